@@ -1,0 +1,32 @@
+// Checkpoint files: the complete state of a run (every particle field of
+// both stores, the blocks, the clock, the stages' opaque state and the output
+// schedule) so that a restart continues bit for bit. Binary, little-endian,
+// written to a temporary name and renamed.
+#pragma once
+
+#include "talus/config.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace talus {
+
+class World;
+
+struct RunState {
+  std::uint64_t scene_hash = 0;  // the restart must use the same scene text
+  std::vector<std::string> stage_states;
+  std::vector<double> writer_next_time;
+  std::vector<std::uint64_t> writer_next_step;
+  double last_output_time = -1.0;
+};
+
+TALUS_API void save_checkpoint(const std::string& path, const World& world, const RunState& state);
+// Replaces the world's state with the checkpoint's. Throws InputError naming
+// the file if it is not a checkpoint of this scene.
+TALUS_API RunState load_checkpoint(const std::string& path, World& world, std::uint64_t scene_hash);
+
+TALUS_API std::uint64_t text_hash(const std::string& text);  // FNV-1a, stable across builds
+
+}  // namespace talus

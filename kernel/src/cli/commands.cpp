@@ -1,0 +1,266 @@
+#include "commands.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "plugin_registry.hpp"
+#include "scene.hpp"
+#include "scene_schema.hpp"
+#include "schema.hpp"
+#include "simulation.hpp"
+#include "talus/error.hpp"
+#include "text.hpp"
+
+namespace fs = std::filesystem;
+
+namespace talus::cli {
+
+namespace {
+
+// The scene `talus run` runs when given none: what Talus is for.
+constexpr const char* default_scene_file = "scenes/block_impact.json";
+
+struct Options {
+  std::vector<std::string> positional;
+  std::string out, restart, output_file;
+  int threads = 0;
+  bool quiet = false, verbose = false;
+};
+
+Options parse(const Args& args, const std::vector<std::string>& allowed) {
+  Options o;
+  auto allowed_flag = [&](const std::string& f) { return std::find(allowed.begin(), allowed.end(), f) != allowed.end(); };
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= args.size()) throw InputError("error: option " + a + " needs a value");
+      return args[++i];
+    };
+    if (a.rfind("--", 0) != 0) {
+      o.positional.push_back(a);
+      continue;
+    }
+    if (!allowed_flag(a)) {
+      const std::string guess = text::closest(a, allowed);
+      throw InputError("error: unknown option '" + a + "'" + (guess.empty() ? "" : "; did you mean '" + guess + "'?"));
+    }
+    if (a == "--out") o.out = value();
+    else if (a == "--restart") o.restart = value();
+    else if (a == "--output") o.output_file = value();
+    else if (a == "--quiet") o.quiet = true;
+    else if (a == "--verbose") o.verbose = true;
+    else if (a == "--threads") {
+      const std::string v = value();
+      try {
+        o.threads = std::stoi(v);
+      } catch (const std::exception&) {
+        o.threads = -1;
+      }
+      if (o.threads < 1) throw InputError("error: --threads: '" + v + "' is not a positive integer");
+    }
+  }
+  return o;
+}
+
+std::string one_scene(const Options& o, const char* command) {
+  if (o.positional.size() != 1)
+    throw InputError(std::string("error: talus ") + command + " needs exactly one scene file\n" + usage());
+  return o.positional.front();
+}
+
+void open_registry(PluginRegistry& registry) { registry.add_default_locations(); }
+
+// Writes text to a file atomically, or to stdout when path is empty.
+void emit(const std::string& text, const std::string& path) {
+  if (path.empty()) {
+    std::fputs(text.c_str(), stdout);
+    return;
+  }
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::trunc);
+    out << text;
+    if (!out) throw RunError("error: cannot write " + tmp + ": " + std::strerror(errno));
+  }
+  fs::rename(tmp, path);
+}
+
+std::string share_dir() {
+  if (const char* env = std::getenv("TALUS_SHARE_DIR")) return env;
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  const fs::path installed = exe.parent_path().parent_path() / "share" / "talus";
+  if (!ec && fs::exists(installed / default_scene_file)) return installed.string();
+  // In a build tree: the source tree's share/ beside it.
+#ifdef TALUS_SOURCE_SHARE_DIR
+  return TALUS_SOURCE_SHARE_DIR;
+#else
+  return installed.string();
+#endif
+}
+
+struct Found {
+  const ModelRecord* record = nullptr;
+};
+
+const ModelRecord& find_model(PluginRegistry& registry, const std::string& spec) {
+  // "NAME" or "KIND/NAME".
+  std::string kind, name = spec;
+  if (const auto slash = spec.find('/'); slash != std::string::npos) {
+    kind = spec.substr(0, slash);
+    name = spec.substr(slash + 1);
+  }
+  std::vector<const ModelRecord*> matches;
+  std::vector<std::string> all;
+  for (const auto& m : registry.models()) {
+    all.push_back(m.name);
+    if (m.name == name && (kind.empty() || m.kind == kind)) matches.push_back(&m);
+  }
+  if (matches.empty()) {
+    const std::string guess = text::closest(name, all);
+    throw InputError("error: no model named '" + spec + "'" + (guess.empty() ? "" : "; did you mean '" + guess + "'?") +
+                     "\n       `talus plugins` lists them all");
+  }
+  if (matches.size() > 1) {
+    std::vector<std::string> kinds;
+    for (auto* m : matches) kinds.push_back(m->kind + "/" + m->name);
+    throw InputError("error: '" + spec + "' names several models; say which: " + text::join(kinds));
+  }
+  return *matches.front();
+}
+
+}  // namespace
+
+std::string default_scene() { return (fs::path(share_dir()) / default_scene_file).string(); }
+
+std::string usage() {
+  return "usage: talus COMMAND [options]\n"
+         "\n"
+         "  run [SCENE] [--out DIR] [--threads N] [--restart CHECKPOINT] [--quiet|--verbose]\n"
+         "                       run a scene (no SCENE: the default demo scene)\n"
+         "  validate SCENE       check a scene and report every problem; runs nothing\n"
+         "  plan SCENE           the resolved pipeline: stages, passes, fields, plugins loaded\n"
+         "  plugins              list the plugins found: kind, name, version, library\n"
+         "  doc NAME             parameter table of a model (NAME or KIND/NAME, or 'scene')\n"
+         "  example NAME         a JSON snippet using a model with its defaults\n"
+         "  schema [--output F]  JSON Schema of scene files, generated from the declarations\n"
+         "  manifest LIBRARY     write LIBRARY.talus.json, the index entry of a plugin\n"
+         "  --help, --version\n"
+         "\n"
+         "exit codes: 0 success, 1 the run failed, 2 bad input or plugin, 130/143 stopped by SIGINT/SIGTERM\n"
+         "plugins are searched in the built-in folder, then TALUS_PLUGIN_PATH (':'-separated), then the\n"
+         "scene's \"plugins\" list.\n";
+}
+
+int run(const Args& args) {
+  const Options o = parse(args, {"--out", "--threads", "--restart", "--quiet", "--verbose"});
+  if (o.positional.size() > 1) throw InputError("error: talus run takes one scene file\n" + usage());
+  const std::string path = o.positional.empty() ? default_scene() : o.positional.front();
+  PluginRegistry registry;
+  open_registry(registry);
+  Simulation simulation(registry, load_scene(path, registry));
+  RunOptions options;
+  options.output_directory = o.out;
+  options.threads = o.threads;
+  options.quiet = o.quiet;
+  options.verbose = o.verbose;
+  options.restart = o.restart;
+  const int code = simulation.run(options);
+  if (code == 0 && o.positional.empty() && !o.quiet)
+    std::printf("\nThis was the default scene (%s).\nPreview a frame:  python3 tools/preview.py %s\n", path.c_str(),
+                (options.output_directory.empty() ? "out/" + simulation.scene().name : options.output_directory).c_str());
+  return code;
+}
+
+int validate(const Args& args) {
+  const Options o = parse(args, {});
+  const std::string path = one_scene(o, "validate");
+  PluginRegistry registry;
+  open_registry(registry);
+  Simulation simulation(registry, load_scene(path, registry));  // setup checks too; writes nothing
+  std::printf("%s: valid (%zu fluid particles, %zu wall particles, %zu stages)\n", path.c_str(),
+              simulation.world().fluid.size(), simulation.world().boundary.size(),
+              simulation.scene().values.model_names("pipeline").size());
+  return 0;
+}
+
+int plan(const Args& args) {
+  const Options o = parse(args, {});
+  const std::string path = one_scene(o, "plan");
+  PluginRegistry registry;
+  open_registry(registry);
+  Simulation simulation(registry, load_scene(path, registry));
+  simulation.print_plan(std::cout);
+  return 0;
+}
+
+int plugins(const Args& args) {
+  parse(args, {});
+  PluginRegistry registry;
+  open_registry(registry);
+  std::printf("%-10s %-26s %-10s %s\n", "kind", "model", "version", "library");
+  for (const char* kind : {"kernel", "eos", "rheology", "boundary", "contact", "writer", "stage"})
+    for (const auto& name : registry.model_names(kind)) {
+      const ModelRecord* m = registry.find(kind, name);
+      const LibraryRecord& l = registry.libraries()[m->library];
+      std::printf("%-10s %-26s %-10s %s\n", kind, name.c_str(), l.plugin_version.c_str(),
+                  fs::path(l.path).filename().c_str());
+    }
+  for (const auto& m : registry.models()) {
+    static const std::vector<std::string> known = {"kernel", "eos", "rheology", "boundary", "contact", "writer", "stage"};
+    if (std::find(known.begin(), known.end(), m.kind) == known.end())
+      std::printf("%-10s %-26s %-10s %s\n", m.kind.c_str(), m.name.c_str(),
+                  registry.libraries()[m.library].plugin_version.c_str(),
+                  fs::path(registry.libraries()[m.library].path).filename().c_str());
+  }
+  std::printf("\n%zu models in %zu libraries; `talus doc NAME` shows a model's parameters.\n", registry.models().size(),
+              registry.libraries().size());
+  return 0;
+}
+
+int doc(const Args& args) {
+  const Options o = parse(args, {});
+  if (o.positional.size() != 1) throw InputError("error: talus doc needs one model name\n" + usage());
+  if (o.positional.front() == "scene") {
+    std::fputs(doc_text(scene_params(), "scene file").c_str(), stdout);
+    return 0;
+  }
+  PluginRegistry registry;
+  open_registry(registry);
+  const ModelRecord& m = find_model(registry, o.positional.front());
+  std::fputs(doc_text(*registry.model_params(m.kind, m.name), m.kind).c_str(), stdout);
+  return 0;
+}
+
+int example(const Args& args) {
+  const Options o = parse(args, {});
+  if (o.positional.size() != 1) throw InputError("error: talus example needs one model name\n" + usage());
+  PluginRegistry registry;
+  open_registry(registry);
+  const ModelRecord& m = find_model(registry, o.positional.front());
+  const std::string key = m.kind == "stage" ? "stage" : "type";
+  std::printf("%s\n", example_json(*registry.model_params(m.kind, m.name), key, m.name, 3).dump(2).c_str());
+  return 0;
+}
+
+int schema(const Args& args) {
+  const Options o = parse(args, {"--output"});
+  PluginRegistry registry;
+  open_registry(registry);
+  emit(scene_json_schema(registry).dump(2) + "\n", o.output_file);
+  return 0;
+}
+
+int manifest(const Args& args) {
+  const Options o = parse(args, {});
+  if (o.positional.size() != 1) throw InputError("error: talus manifest needs one plugin library\n" + usage());
+  const std::string& library = o.positional.front();
+  emit(PluginRegistry::describe_library(library).dump(2) + "\n", library + ".talus.json");
+  return 0;
+}
+
+}  // namespace talus::cli

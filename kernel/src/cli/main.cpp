@@ -1,0 +1,44 @@
+// talus: the command-line front end of the Talus runtime.
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include "commands.hpp"
+#include "talus/build_info.hpp"
+#include "talus/error.hpp"
+
+int main(int argc, char** argv) {
+  using namespace talus;
+  cli::Args args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    std::fputs(cli::usage().c_str(), stdout);
+    return args.empty() ? 2 : 0;
+  }
+  if (args[0] == "--version") {
+    std::printf("talus %s (SDK ABI %d)\n", TALUS_VERSION_STRING, sdk_abi_version);
+    return 0;
+  }
+  const std::string command = args[0];
+  args.erase(args.begin());
+  try {
+    if (command == "run") return cli::run(args);
+    if (command == "validate") return cli::validate(args);
+    if (command == "plan") return cli::plan(args);
+    if (command == "plugins") return cli::plugins(args);
+    if (command == "doc") return cli::doc(args);
+    if (command == "example") return cli::example(args);
+    if (command == "schema") return cli::schema(args);
+    if (command == "manifest") return cli::manifest(args);
+    std::fprintf(stderr, "error: unknown command '%s'\n%s", command.c_str(), cli::usage().c_str());
+    return 2;
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 2;
+  } catch (const RunError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,200 @@
+// Lattice filling of the scene shapes (fluid bodies) and wall layers (wall
+// bodies). Lattices are anchored dp/2 inside a box face so that fluid and
+// wall particles meet with spacing dp across the surface.
+#include "talus/geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include "talus/error.hpp"
+#include "talus/mesh.hpp"
+
+namespace talus {
+
+void declare_shape(ParamSet& body) {
+  auto b = body.one_of("shape").doc("the region the body occupies");
+
+  ParamSet box{"box", "axis-aligned box"};
+  box.vector("min").unit("m").doc("lower corner");
+  box.vector("max").unit("m").doc("upper corner");
+  box.check([](const ParamValues& v, Diagnostics& d) {
+    const Vec3 lo = v.vector("min"), hi = v.vector("max");
+    for (int a = 0; a < 3; ++a)
+      if (hi[a] < lo[a] || (a < 2 && hi[a] == lo[a])) {
+        d.error(v, "max", "must be greater than min in every component");
+        break;
+      }
+  });
+  b.alternative("box", box);
+
+  ParamSet sphere{"sphere", "sphere (a disc in 2D)"};
+  sphere.vector("centre").unit("m").doc("centre");
+  sphere.real("radius").unit("m").greater_than(0.0).doc("radius");
+  b.alternative("sphere", sphere);
+
+  ParamSet cylinder{"cylinder", "circular cylinder (3D)"};
+  cylinder.vector("base").unit("m").doc("centre of the base disc");
+  cylinder.vector("axis").default_value({0.0, 0.0, 1.0}, {0.0, 1.0}).doc("direction of the axis");
+  cylinder.real("radius").unit("m").greater_than(0.0).doc("radius");
+  cylinder.real("height").unit("m").greater_than(0.0).doc("length along the axis");
+  b.alternative("cylinder", cylinder);
+
+  ParamSet half{"half_space", "everything in the domain behind a plane"};
+  half.vector("point").unit("m").doc("a point on the plane");
+  half.vector("normal").doc("outward normal: the body is on the side opposite to it");
+  b.alternative("half_space", half);
+
+  ParamSet walls{"box_walls", "the walls of a box-shaped tank, outside the box, some faces open"};
+  walls.vector("min").unit("m").doc("inner lower corner");
+  walls.vector("max").unit("m").doc("inner upper corner");
+  walls.string_list("open", {"-x", "+x", "-y", "+y", "-z", "+z"}).optional().doc("faces without a wall (default none)");
+  b.alternative("box_walls", walls);
+
+  ParamSet mesh{"mesh", "closed triangle mesh from an STL or OBJ file"};
+  mesh.path("file").doc("the .stl or .obj file, relative to the scene");
+  mesh.real("scale").default_value(1.0).greater_than(0.0).doc("factor applied to the coordinates");
+  mesh.vector("offset").unit("m").default_value({0.0, 0.0, 0.0}, {0.0, 0.0}).doc("translation applied after scaling");
+  b.alternative("mesh", mesh);
+
+  ParamSet wedge{"wedge", "right-angled triangular prism: the triangle (0,0),(length,0),(0,height) in x-z, extruded along y"};
+  wedge.vector("origin").unit("m").length(3).doc("corner at the right angle, lowest y");
+  wedge.real("length").unit("m").greater_than(0.0).doc("leg along x");
+  wedge.real("height").unit("m").greater_than(0.0).doc("leg along z");
+  wedge.real("width").unit("m").greater_than(0.0).doc("extrusion along y");
+  b.alternative("wedge", wedge);
+
+  ParamSet tetra{"tetrahedron", "tetrahedron from four points"};
+  tetra.vector_list("vertices").unit("m").doc("the four corners");
+  b.alternative("tetrahedron", tetra);
+
+  ParamSet poly{"polyhedron", "convex polyhedron"};
+  poly.vector_list("vertices").unit("m").doc("corner points");
+  poly.index_lists("faces").doc("each face as vertex indices, counter-clockwise seen from outside");
+  b.alternative("polyhedron", poly);
+}
+
+namespace {
+
+using Inside = std::function<bool(const Vec3&)>;
+
+// Lattice points p = lo + (i + 1/2) dp within [lo, hi] for which keep(p).
+std::vector<Vec3> lattice(const Vec3& lo, const Vec3& hi, double dp, int dim, const Inside& keep) {
+  int n[3] = {1, 1, 1};
+  for (int a = 0; a < dim; ++a) n[a] = std::max(0, static_cast<int>(std::lround((hi[a] - lo[a]) / dp)));
+  std::vector<Vec3> out;
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i) {
+        Vec3 p{lo.x + (i + 0.5) * dp, lo.y + (j + 0.5) * dp, dim == 3 ? lo.z + (k + 0.5) * dp : 0.0};
+        if (keep(p)) out.push_back(p);
+      }
+  return out;
+}
+
+TriangleMesh scaled_mesh(const ParamValues& v) {
+  TriangleMesh m = load_mesh(v.string("file"));
+  const double s = v.real("scale");
+  const Vec3 o = v.vector("offset");
+  for (auto& p : m.vertices) p = p * s + o;
+  return m;
+}
+
+// Signed distance-like description of a solid shape: inside(p) and the
+// distance of an inside point to the surface.
+struct Solid {
+  Vec3 lo, hi;  // bounding box
+  std::function<bool(const Vec3&)> inside;
+  std::function<double(const Vec3&)> depth;  // distance to the surface, for inside points
+};
+
+Solid solid(const std::string& alt, const ParamValues& v, int dim, const Vec3& dlo, const Vec3& dhi) {
+  if (alt == "box") {
+    const Vec3 lo = v.vector("min"), hi = v.vector("max");
+    return {lo, hi,
+            [=](const Vec3& p) {
+              for (int a = 0; a < dim; ++a)
+                if (p[a] < lo[a] || p[a] > hi[a]) return false;
+              return true;
+            },
+            [=](const Vec3& p) {
+              double d = 1e300;
+              for (int a = 0; a < dim; ++a) d = std::min({d, p[a] - lo[a], hi[a] - p[a]});
+              return d;
+            }};
+  }
+  if (alt == "sphere") {
+    const Vec3 c = v.vector("centre");
+    const double r = v.real("radius");
+    const Vec3 e{r, r, dim == 3 ? r : 0.0};
+    return {c - e, c + e, [=](const Vec3& p) { return norm(p - c) < r; }, [=](const Vec3& p) { return r - norm(p - c); }};
+  }
+  if (alt == "cylinder") {
+    if (dim != 3) v.fail("", "a cylinder needs a 3D domain (use a box in 2D)");
+    const Vec3 base = v.vector("base");
+    Vec3 axis = v.vector("axis");
+    if (!(norm(axis) > 0.0)) v.fail("axis", "must not be the zero vector");
+    axis = axis / norm(axis);
+    const double r = v.real("radius"), len = v.real("height");
+    const double ext = r + len;
+    const Vec3 e{ext, ext, ext};
+    auto radial = [=](const Vec3& p) { const Vec3 d = p - base; return norm(d - axis * dot(d, axis)); };
+    return {base - e, base + e,
+            [=](const Vec3& p) { const double s = dot(p - base, axis); return s >= 0 && s <= len && radial(p) < r; },
+            [=](const Vec3& p) { const double s = dot(p - base, axis); return std::min({s, len - s, r - radial(p)}); }};
+  }
+  if (alt == "half_space") {
+    const Vec3 x0 = v.vector("point");
+    Vec3 n = v.vector("normal");
+    if (!(norm(n) > 0.0)) v.fail("normal", "must not be the zero vector");
+    n = n / norm(n);
+    return {dlo, dhi, [=](const Vec3& p) { return dot(p - x0, n) < 0.0; }, [=](const Vec3& p) { return -dot(p - x0, n); }};
+  }
+  if (alt == "mesh") {
+    auto mesh = std::make_shared<TriangleMesh>(scaled_mesh(v));
+    Vec3 lo, hi;
+    mesh->bounds(lo, hi);
+    return {lo, hi, [mesh](const Vec3& p) { return mesh->contains(p); },
+            [mesh](const Vec3& p) { return mesh->distance(p); }};
+  }
+  v.fail("", "shape '" + alt + "' cannot be filled with particles (it is for blocks or walls only)");
+}
+
+}  // namespace
+
+std::vector<Vec3> fill_points(const std::string& alt, const ParamValues& v, double dp, int dim, const Vec3& dlo,
+                              const Vec3& dhi) {
+  if (alt == "box_walls") v.fail("", "box_walls has no inside to fill; use box for a fluid body");
+  const Solid s = solid(alt, v, dim, dlo, dhi);
+  if (alt == "box") return lattice(s.lo, s.hi, dp, dim, [](const Vec3&) { return true; });
+  // Anchor at the bounding box so the lattice is the same as for a box.
+  return lattice(s.lo, s.hi + Vec3{dp, dp, dp}, dp, dim, s.inside);
+}
+
+std::vector<Vec3> wall_points(const std::string& alt, const ParamValues& v, double dp, int dim, int layers,
+                              const Vec3& dlo, const Vec3& dhi) {
+  const double thickness = layers * dp;
+  if (alt == "box_walls") {
+    const Vec3 lo = v.vector("min"), hi = v.vector("max");
+    const auto& open = v.strings("open");
+    auto is_open = [&](const char* face) { return std::find(open.begin(), open.end(), face) != open.end(); };
+    const char* minus[3] = {"-x", "-y", "-z"};
+    const char* plus[3] = {"+x", "+y", "+z"};
+    Vec3 olo = lo, ohi = hi;
+    for (int a = 0; a < dim; ++a) {
+      if (!is_open(minus[a])) olo[a] -= thickness;
+      if (!is_open(plus[a])) ohi[a] += thickness;
+    }
+    return lattice(olo, ohi, dp, dim, [&](const Vec3& p) {
+      for (int a = 0; a < dim; ++a)
+        if (p[a] < lo[a] || p[a] > hi[a]) return true;
+      return false;
+    });
+  }
+  const Solid s = solid(alt, v, dim, dlo, dhi);
+  if (alt == "box") return lattice(s.lo, s.hi, dp, dim, [&](const Vec3& p) { return s.depth(p) < thickness; });
+  return lattice(s.lo, s.hi + Vec3{dp, dp, dp}, dp, dim,
+                 [&](const Vec3& p) { return s.inside(p) && s.depth(p) < thickness; });
+}
+
+}  // namespace talus

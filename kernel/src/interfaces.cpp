@@ -1,0 +1,36 @@
+// Key functions of the SDK's polymorphic types: defining the virtual
+// destructors here puts their type information in libtalus only, so
+// dynamic_cast and exceptions work across plugins built with hidden
+// visibility (DESIGN.md, "Shape of the runtime").
+#include "talus/blocks.hpp"
+#include "talus/boundary.hpp"
+#include "talus/eos.hpp"
+#include "talus/error.hpp"
+#include "talus/rheology.hpp"
+#include "talus/smoothing_kernel.hpp"
+#include "talus/stage.hpp"
+#include "talus/writer.hpp"
+
+namespace talus {
+
+Error::~Error() = default;
+InputError::~InputError() = default;
+RunError::~RunError() = default;
+Model::~Model() = default;
+SmoothingKernel::~SmoothingKernel() = default;
+EquationOfState::~EquationOfState() = default;
+Rheology::~Rheology() = default;
+Boundary::~Boundary() = default;
+Stage::~Stage() = default;
+Writer::~Writer() = default;
+BlockSet::~BlockSet() = default;
+
+void Rheology::apparent_viscosity(std::span<const Index>, const ViscosityInputs&, double*) const {
+  throw RunError("this rheology model has no apparent viscosity (it is a basal-stress model only)");
+}
+
+void Rheology::basal_shear(std::span<const Index>, const BasalInputs&, double*) const {
+  throw RunError("this rheology model has no basal shear stress for depth-integrated flow");
+}
+
+}  // namespace talus

@@ -1,0 +1,149 @@
+#include "talus/particles.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+#include <utility>
+
+#include "talus/error.hpp"
+
+namespace talus {
+
+namespace {
+const char* type_name(FieldType t) {
+  switch (t) {
+    case FieldType::scalar: return "scalar";
+    case FieldType::vector: return "vector";
+    case FieldType::integer: return "integer";
+    case FieldType::id: return "id";
+  }
+  return "?";
+}
+}  // namespace
+
+ParticleStore::ParticleStore() {
+  require({"id", FieldType::id, "", true, true});
+  require({"body", FieldType::integer, "", true, true});
+  require({"material", FieldType::integer, "", false, true});
+  require({"position", FieldType::vector, "m", true, true});
+}
+
+void ParticleStore::require(const FieldInfo& info) {
+  for (auto& f : fields_)
+    if (f.info.name == info.name) {
+      if (f.info.type != info.type)
+        throw std::logic_error("field '" + info.name + "' requested as " + type_name(info.type) + " but registered as " +
+                               type_name(f.info.type));
+      f.info.output = f.info.output || info.output;
+      f.info.restart = f.info.restart || info.restart;
+      return;
+    }
+  Field f{info, {}};
+  switch (info.type) {
+    case FieldType::scalar: f.data = std::vector<double>(size_, 0.0); break;
+    case FieldType::vector: f.data = std::vector<Vec3>(size_); break;
+    case FieldType::integer: f.data = std::vector<std::int32_t>(size_, 0); break;
+    case FieldType::id: f.data = std::vector<std::uint64_t>(size_, 0); break;
+  }
+  fields_.push_back(std::move(f));
+}
+
+bool ParticleStore::has(std::string_view name) const {
+  return std::any_of(fields_.begin(), fields_.end(), [&](const Field& f) { return f.info.name == name; });
+}
+
+const FieldInfo& ParticleStore::info(std::string_view name) const {
+  for (const auto& f : fields_)
+    if (f.info.name == name) return f.info;
+  throw std::logic_error("no particle field '" + std::string(name) + "'");
+}
+
+std::vector<FieldInfo> ParticleStore::fields() const {
+  std::vector<FieldInfo> out;
+  out.reserve(fields_.size());
+  for (const auto& f : fields_) out.push_back(f.info);
+  return out;
+}
+
+ParticleStore::Field& ParticleStore::field(std::string_view name, FieldType type) {
+  return const_cast<Field&>(std::as_const(*this).field(name, type));
+}
+
+const ParticleStore::Field& ParticleStore::field(std::string_view name, FieldType type) const {
+  for (const auto& f : fields_)
+    if (f.info.name == name) {
+      if (f.info.type != type)
+        throw std::logic_error("field '" + std::string(name) + "' is " + type_name(f.info.type) + ", accessed as " +
+                               type_name(type));
+      return f;
+    }
+  throw std::logic_error("no particle field '" + std::string(name) + "' (a stage must require() it at setup)");
+}
+
+std::span<double> ParticleStore::scalar(std::string_view n) { return std::get<0>(field(n, FieldType::scalar).data); }
+std::span<const double> ParticleStore::scalar(std::string_view n) const {
+  return std::get<0>(field(n, FieldType::scalar).data);
+}
+std::span<Vec3> ParticleStore::vector(std::string_view n) { return std::get<1>(field(n, FieldType::vector).data); }
+std::span<const Vec3> ParticleStore::vector(std::string_view n) const {
+  return std::get<1>(field(n, FieldType::vector).data);
+}
+std::span<std::int32_t> ParticleStore::integer(std::string_view n) {
+  return std::get<2>(field(n, FieldType::integer).data);
+}
+std::span<const std::int32_t> ParticleStore::integer(std::string_view n) const {
+  return std::get<2>(field(n, FieldType::integer).data);
+}
+std::span<std::uint64_t> ParticleStore::ids() { return std::get<3>(field("id", FieldType::id).data); }
+std::span<const std::uint64_t> ParticleStore::ids() const { return std::get<3>(field("id", FieldType::id).data); }
+
+std::size_t ParticleStore::append(std::size_t n) {
+  const std::size_t first = size_;
+  size_ += n;
+  for (auto& f : fields_) std::visit([&](auto& column) { column.resize(size_); }, f.data);
+  auto id = ids();
+  for (std::size_t i = first; i < size_; ++i) id[i] = next_id_++;
+  return first;
+}
+
+void ParticleStore::reserve(std::size_t n) {
+  for (auto& f : fields_) std::visit([&](auto& column) { column.reserve(n); }, f.data);
+}
+
+void ParticleStore::reorder(std::span<const Index> order) {
+  if (order.size() != size_) throw std::logic_error("ParticleStore::reorder: permutation size mismatch");
+  for (auto& f : fields_) {
+    std::visit(
+        [&](auto& column) {
+          using T = typename std::decay_t<decltype(column)>::value_type;
+          scratch_.resize(size_ * sizeof(T));
+          T* tmp = reinterpret_cast<T*>(scratch_.data());
+#pragma omp parallel for schedule(static)
+          for (std::size_t i = 0; i < size_; ++i) tmp[i] = column[order[i]];
+          std::memcpy(column.data(), tmp, size_ * sizeof(T));
+        },
+        f.data);
+  }
+}
+
+std::size_t ParticleStore::remove_if(std::span<const std::uint8_t> flags) {
+  if (flags.size() != size_) throw std::logic_error("ParticleStore::remove_if: flag size mismatch");
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < size_; ++i) kept += flags[i] ? 0 : 1;
+  if (kept == size_) return 0;
+  for (auto& f : fields_) {
+    std::visit(
+        [&](auto& column) {
+          std::size_t w = 0;
+          for (std::size_t i = 0; i < size_; ++i)
+            if (!flags[i]) column[w++] = column[i];
+          column.resize(kept);
+        },
+        f.data);
+  }
+  const std::size_t removed = size_ - kept;
+  size_ = kept;
+  return removed;
+}
+
+}  // namespace talus

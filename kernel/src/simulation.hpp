@@ -1,0 +1,88 @@
+// A simulation built from a validated scene: the world, the models the scene
+// names (and only those), the pipeline of stages and the output schedule.
+// Building it runs every setup check, so bad input is found before anything
+// is written; run() then owns the time loop.
+#pragma once
+
+#include "talus/config.hpp"
+
+#include <iosfwd>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scene.hpp"
+#include "talus/world.hpp"
+
+namespace talus {
+
+class PluginRegistry;
+class Stage;
+class Writer;
+class Model;
+
+struct RunOptions {
+  std::string output_directory;  // default: out/SCENE_NAME
+  int threads = 0;               // 0: OpenMP default
+  bool quiet = false;
+  bool verbose = false;
+  std::string restart;           // checkpoint to continue from
+  double progress_seconds = 0.0; // 0: 0.25 s on a terminal, 10 s otherwise
+};
+
+struct ScheduledWriter {
+  std::string type;
+  std::unique_ptr<Writer> writer;
+  double every = 0.0;              // simulated seconds, 0 if by steps
+  std::uint64_t every_steps = 0;
+  double next_time = 0.0;
+  std::uint64_t next_step = 0;
+};
+
+class TALUS_API Simulation {
+ public:
+  // Builds the world and every model, runs all setup checks. Throws
+  // InputError on bad input; writes nothing.
+  Simulation(PluginRegistry& registry, Scene scene);
+  ~Simulation();
+
+  // Prints the resolved pipeline (`talus plan`).
+  void print_plan(std::ostream& out) const;
+  // Runs to the end; returns the exit code (0 done, 1 failed, 130/143 interrupted).
+  int run(const RunOptions& options);
+
+  World& world() { return world_; }
+  const Scene& scene() const { return scene_; }
+
+  // Checkpoints (also used by tests): write the complete state; read it back
+  // into a simulation built from the same scene.
+  void write_checkpoint(const std::string& path) const;
+  void read_checkpoint(const std::string& path);
+
+ private:
+  void build_materials();
+  void build_kernel();
+  void build_bodies();
+  void build_stages();
+  void build_writers();
+  void remove_escaped_particles();
+  void resort_particles();
+  void check_finite() const;
+  void write_due_outputs(bool force);
+  std::string last_output() const;
+
+  PluginRegistry& registry_;
+  Scene scene_;
+  std::vector<std::unique_ptr<Model>> models_;  // eos, rheology, boundary, contact, kernel: destroyed first
+  World world_;
+  std::vector<std::unique_ptr<Stage>> stages_;
+  std::vector<std::string> stage_names_;
+  std::vector<ScheduledWriter> writers_;
+  std::string kernel_name_;
+  std::uint64_t resort_every_ = 25;
+  double last_output_time_ = -1.0;
+  std::string output_directory_;
+  std::vector<std::uint8_t> escaped_;  // scratch, reused
+};
+
+}  // namespace talus

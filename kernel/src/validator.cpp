@@ -1,0 +1,444 @@
+#include "validator.hpp"
+
+#include <cmath>
+#include <filesystem>
+
+#include "talus/error.hpp"
+#include "text.hpp"
+
+namespace talus {
+
+namespace {
+
+using nlohmann::json;
+
+std::string describe(const json& j) {
+  std::string s = j.dump();
+  if (s.size() > 40) s = s.substr(0, 37) + "...";
+  switch (j.type()) {
+    case json::value_t::string: return "the string " + s;
+    case json::value_t::boolean: return "the boolean " + s;
+    case json::value_t::null: return "null";
+    case json::value_t::array: return "an array " + s;
+    case json::value_t::object: return "an object";
+    default: return s;
+  }
+}
+
+std::vector<std::string> names_of(const ParamSet& set) {
+  std::vector<std::string> out;
+  for (const auto& s : set.specs()) out.push_back(s.name);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::string known_hint(const std::string& word, const std::vector<std::string>& known) {
+  const std::string guess = text::closest(word, known);
+  std::string hint = guess.empty() ? "" : "did you mean '" + guess + "'?  ";
+  return hint + "known: " + (known.empty() ? "(none)" : text::join(known));
+}
+
+class Validator {
+ public:
+  explicit Validator(ValidationContext& c) : c_(c) {}
+
+  // `skip` is the model-selector key ("type"), validated by the caller.
+  ParamValues object(const ParamSet& set, const json& j, const std::string& ptr, std::string_view owner,
+                     const ParamSet* extra = nullptr, std::string_view skip = {}) {
+    ParamValues out(c_.file, ptr);
+    if (!j.is_object()) {
+      error(ptr, "expected an object, got " + describe(j));
+      return out;
+    }
+    const std::size_t errors_before = c_.diagnostics->size();
+    // Unknown keys first, so a misspelt key and its "missing" twin read together.
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      if (set.find(it.key()) || (extra && extra->find(it.key())) || it.key() == skip) continue;
+      std::vector<std::string> known = names_of(set);
+      if (extra)
+        for (auto& n : names_of(*extra)) known.push_back(n);
+      std::sort(known.begin(), known.end());
+      const std::string where = owner.empty() ? (set.name().empty() ? "here" : "in " + set.name()) : std::string(owner);
+      error(ptr + "/" + text::pointer_token(it.key()),
+            "unknown parameter " + (owner.empty() ? where : "for " + where), known_hint(it.key(), known));
+    }
+    for (const ParamSet* s : {&set, extra}) {
+      if (!s) continue;
+      for (const auto& spec : s->specs()) {
+        const std::string p = ptr + "/" + text::pointer_token(spec.name);
+        auto it = j.find(spec.name);
+        if (it == j.end()) {
+          ParamValue v;
+          if (fill_default(spec, v))
+            out.set(spec.name, std::move(v));
+          else if (spec.required)
+            error(p, "missing required parameter" + (spec.doc.empty() ? "" : " (" + spec.doc + ")"));
+          continue;
+        }
+        ParamValue v;
+        if (value(spec, *it, p, v)) out.set(spec.name, std::move(v));
+      }
+    }
+    if (c_.diagnostics->size() == errors_before)
+      for (const auto& check : set.checks()) check(out, *c_.diagnostics);
+    return out;
+  }
+
+ private:
+  void error(const std::string& ptr, std::string message, std::string hint = {}) {
+    c_.diagnostics->error(c_.file, ptr, std::move(message), std::move(hint));
+  }
+
+  bool fill_default(const ParamSpec& s, ParamValue& v) {
+    v.type = s.type;
+    switch (s.type) {
+      case ParamType::real:
+        if (!s.default_real) return false;
+        v.real = *s.default_real;
+        return true;
+      case ParamType::integer:
+        if (!s.default_integer) return false;
+        v.integer = *s.default_integer;
+        return true;
+      case ParamType::boolean:
+        if (!s.default_boolean) return false;
+        v.boolean = *s.default_boolean;
+        return true;
+      case ParamType::string:
+      case ParamType::choice:
+      case ParamType::path:
+        if (!s.default_string) return false;
+        v.text = *s.default_string;
+        return true;
+      case ParamType::vector: {
+        const auto& d = (c_.dim == 2 && s.default_reals_2d) ? s.default_reals_2d : s.default_reals;
+        if (!d) return false;
+        v.reals = *d;
+        v.reals.resize(3, 0.0);
+        return true;
+      }
+      case ParamType::real_list:
+        if (s.default_reals) v.reals = *s.default_reals;
+        return s.default_reals.has_value() || !s.required;
+      case ParamType::vector_list:
+      case ParamType::string_list:
+      case ParamType::index_lists:
+      case ParamType::object_list:
+      case ParamType::object_map:
+        return !s.required;  // an optional list is an empty list
+      case ParamType::object:
+        // An optional object whose members all have defaults is filled in.
+        if (s.required || !s.nested) return false;
+        for (const auto& m : s.nested->specs())
+          if (m.required) return false;
+        {
+          Diagnostics ignored;
+          ValidationContext quiet = c_;
+          quiet.diagnostics = &ignored;
+          Validator inner(quiet);
+          v.objects.push_back(inner.object(*s.nested, json::object(), "", {}));
+        }
+        return true;
+      case ParamType::model_list:
+        return !s.required;
+      case ParamType::one_of:
+      case ParamType::model:
+        return false;
+    }
+    return false;
+  }
+
+  bool in_range(const ParamSpec& s, double x, const std::string& p) {
+    const bool low_ok = s.lower_inclusive ? x >= s.lower : x > s.lower;
+    const bool high_ok = s.upper_inclusive ? x <= s.upper : x < s.upper;
+    if (low_ok && high_ok) return true;
+    error(p, text::number(x) + " is out of range; " + s.range_text());
+    return false;
+  }
+
+  bool number(const json& j, const std::string& p, double& x) {
+    if (!j.is_number()) {
+      error(p, "expected a number, got " + describe(j));
+      return false;
+    }
+    x = j.get<double>();
+    return true;
+  }
+
+  bool numbers(const ParamSpec& s, const json& j, const std::string& p, std::size_t count, std::vector<double>& out) {
+    if (!j.is_array() || (count && j.size() != count)) {
+      error(p, "expected " + (count ? "an array of " + std::to_string(count) + " numbers" : std::string("an array of numbers")) +
+                   ", got " + describe(j));
+      return false;
+    }
+    bool ok = true;
+    for (std::size_t k = 0; k < j.size(); ++k) {
+      double x = 0;
+      const std::string pk = p + "/" + std::to_string(k);
+      if (number(j[k], pk, x) && in_range(s, x, pk))
+        out.push_back(x);
+      else
+        ok = false;
+    }
+    return ok;
+  }
+
+  bool value(const ParamSpec& s, const json& j, const std::string& p, ParamValue& v) {
+    v.type = s.type;
+    switch (s.type) {
+      case ParamType::real:
+        return number(j, p, v.real) && in_range(s, v.real, p);
+      case ParamType::integer: {
+        double x = 0;
+        if (!j.is_number() || !number(j, p, x) || std::floor(x) != x) {
+          error(p, "expected an integer, got " + describe(j));
+          return false;
+        }
+        v.integer = static_cast<std::int64_t>(x);
+        return in_range(s, x, p);
+      }
+      case ParamType::boolean:
+        if (!j.is_boolean()) {
+          error(p, "expected true or false, got " + describe(j));
+          return false;
+        }
+        v.boolean = j.get<bool>();
+        return true;
+      case ParamType::string:
+        if (!j.is_string()) {
+          error(p, "expected a string, got " + describe(j));
+          return false;
+        }
+        v.text = j.get<std::string>();
+        return true;
+      case ParamType::choice:
+        if (!j.is_string()) {
+          error(p, "expected one of " + text::join(s.choices) + ", got " + describe(j));
+          return false;
+        }
+        v.text = j.get<std::string>();
+        if (std::find(s.choices.begin(), s.choices.end(), v.text) == s.choices.end()) {
+          error(p, "'" + v.text + "' is not allowed", known_hint(v.text, s.choices));
+          return false;
+        }
+        return true;
+      case ParamType::path: {
+        if (!j.is_string() || j.get<std::string>().empty()) {
+          error(p, "expected a file name, got " + describe(j));
+          return false;
+        }
+        std::filesystem::path path = j.get<std::string>();
+        if (path.is_relative()) path = std::filesystem::path(c_.base_dir) / path;
+        v.text = path.lexically_normal().string();
+        if (!std::filesystem::exists(v.text)) {
+          error(p, "file not found: " + v.text);
+          return false;
+        }
+        return true;
+      }
+      case ParamType::vector: {
+        const std::size_t n = s.length ? static_cast<std::size_t>(s.length) : static_cast<std::size_t>(c_.dim);
+        if (!numbers(s, j, p, n, v.reals)) return false;
+        v.reals.resize(3, 0.0);
+        return true;
+      }
+      case ParamType::real_list:
+        return numbers(s, j, p, 0, v.reals);
+      case ParamType::vector_list: {
+        if (!j.is_array()) {
+          error(p, "expected an array of points, got " + describe(j));
+          return false;
+        }
+        const std::size_t n = s.length ? static_cast<std::size_t>(s.length) : static_cast<std::size_t>(c_.dim);
+        bool ok = true;
+        for (std::size_t k = 0; k < j.size(); ++k) {
+          std::vector<double> point;
+          if (numbers(s, j[k], p + "/" + std::to_string(k), n, point)) {
+            point.resize(3, 0.0);
+            v.reals.insert(v.reals.end(), point.begin(), point.end());
+          } else {
+            ok = false;
+          }
+        }
+        return ok;
+      }
+      case ParamType::string_list: {
+        if (!j.is_array()) {
+          error(p, "expected an array of strings, got " + describe(j));
+          return false;
+        }
+        bool ok = true;
+        for (std::size_t k = 0; k < j.size(); ++k) {
+          const std::string pk = p + "/" + std::to_string(k);
+          if (!j[k].is_string()) {
+            error(pk, "expected a string, got " + describe(j[k]));
+            ok = false;
+            continue;
+          }
+          const std::string item = j[k].get<std::string>();
+          if (!s.choices.empty() && std::find(s.choices.begin(), s.choices.end(), item) == s.choices.end()) {
+            error(pk, "'" + item + "' is not allowed", known_hint(item, s.choices));
+            ok = false;
+          }
+          v.strings.push_back(item);
+        }
+        return ok;
+      }
+      case ParamType::index_lists: {
+        bool ok = j.is_array();
+        for (std::size_t k = 0; ok && k < j.size(); ++k) {
+          std::vector<int> list;
+          ok = j[k].is_array();
+          for (std::size_t m = 0; ok && m < j[k].size(); ++m) {
+            ok = j[k][m].is_number_integer() && j[k][m].get<long long>() >= 0;
+            if (ok) list.push_back(j[k][m].get<int>());
+          }
+          if (!ok) error(p + "/" + std::to_string(k), "expected an array of vertex indices (integers >= 0)");
+          v.indices.push_back(std::move(list));
+        }
+        if (!j.is_array()) error(p, "expected an array of arrays of vertex indices, got " + describe(j));
+        return ok;
+      }
+      case ParamType::object:
+        v.objects.push_back(object(*s.nested, j, p, {}));
+        return true;
+      case ParamType::object_list: {
+        if (!j.is_array()) {
+          error(p, "expected an array of objects, got " + describe(j));
+          return false;
+        }
+        for (std::size_t k = 0; k < j.size(); ++k)
+          v.objects.push_back(object(*s.nested, j[k], p + "/" + std::to_string(k), {}));
+        return true;
+      }
+      case ParamType::object_map: {
+        if (!j.is_object()) {
+          error(p, "expected an object of named entries, got " + describe(j));
+          return false;
+        }
+        for (auto it = j.begin(); it != j.end(); ++it) {
+          v.strings.push_back(it.key());
+          v.objects.push_back(object(*s.nested, it.value(), p + "/" + text::pointer_token(it.key()), {}));
+        }
+        return true;
+      }
+      case ParamType::one_of: {
+        std::vector<std::string> names;
+        for (const auto& [n, set] : s.alternatives) names.push_back(n);
+        if (!j.is_object() || j.size() != 1) {
+          error(p, "expected an object with exactly one of: " + text::join(names) + ", got " + describe(j));
+          return false;
+        }
+        const std::string key = j.begin().key();
+        for (const auto& [n, set] : s.alternatives)
+          if (n == key) {
+            v.text = key;
+            v.objects.push_back(object(*set, j.begin().value(), p + "/" + text::pointer_token(key), {}));
+            return true;
+          }
+        error(p + "/" + text::pointer_token(key), "unknown " + s.name + " '" + key + "'", known_hint(key, names));
+        return false;
+      }
+      case ParamType::model: {
+        std::string name;
+        ParamValues params;
+        if (!model(s, j, p, name, params)) return false;
+        v.text = std::move(name);
+        v.objects.push_back(std::move(params));
+        return true;
+      }
+      case ParamType::model_list: {
+        if (!j.is_array()) {
+          error(p, "expected an array of " + s.model_kind + " entries, got " + describe(j));
+          return false;
+        }
+        bool ok = true;
+        for (std::size_t k = 0; k < j.size(); ++k) {
+          std::string name;
+          ParamValues params;
+          if (model(s, j[k], p + "/" + std::to_string(k), name, params)) {
+            v.strings.push_back(std::move(name));
+            v.objects.push_back(std::move(params));
+          } else {
+            ok = false;
+          }
+        }
+        return ok;
+      }
+    }
+    return false;
+  }
+
+  // A model object: {"type": NAME, ...its parameters...}.
+  bool model(const ParamSpec& s, const json& j, const std::string& p, std::string& name, ParamValues& params) {
+    if (!j.is_object()) {
+      error(p, "expected an object with \"" + s.model_key + "\": the " + s.model_kind + " model, got " + describe(j));
+      return false;
+    }
+    const std::vector<std::string> known = c_.models ? c_.models->model_names(s.model_kind) : std::vector<std::string>{};
+    auto it = j.find(s.model_key);
+    const std::string kp = p + "/" + text::pointer_token(s.model_key);
+    if (it == j.end() || !it->is_string()) {
+      error(it == j.end() ? p : kp, "expected \"" + s.model_key + "\": the name of a " + s.model_kind + " model",
+            "known: " + text::join(known));
+      return false;
+    }
+    name = it->get<std::string>();
+    const ParamSet* set = nullptr;
+    try {
+      set = c_.models ? c_.models->model_params(s.model_kind, name) : nullptr;
+    } catch (const InputError& e) {
+      error(kp, e.what());
+      return false;
+    }
+    if (!set) {
+      error(kp, "unknown " + s.model_kind + " '" + name + "'", known_hint(name, known));
+      return false;
+    }
+    params = object(*set, j, p, s.model_kind + " '" + name + "'", s.nested.get(), s.model_key);
+    return true;
+  }
+
+  ValidationContext& c_;
+};
+
+}  // namespace
+
+ParamValues validate(const ParamSet& set, const json& j, const std::string& pointer, ValidationContext& context,
+                     std::string_view owner) {
+  Validator v(context);
+  return v.object(set, j, pointer, owner);
+}
+
+json parse_json(std::string_view text, const std::string& file) {
+  try {
+    return json::parse(text.begin(), text.end(), nullptr, true, /*ignore_comments=*/true);
+  } catch (const json::parse_error& e) {
+    // Report line and column instead of the byte offset.
+    std::size_t line = 1, column = 1;
+    for (std::size_t k = 0; k + 1 < e.byte && k < text.size(); ++k) {
+      if (text[k] == '\n') {
+        ++line;
+        column = 1;
+      } else {
+        ++column;
+      }
+    }
+    std::string what = e.what();
+    const auto colon = what.rfind(": ");
+    if (colon != std::string::npos) what = what.substr(colon + 2);
+    throw InputError("error: " + file + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                     ": JSON syntax error: " + what);
+  }
+}
+
+ParamValues params_from_json(const ParamSet& set, std::string_view json_text, int dim, std::string_view file) {
+  Diagnostics diagnostics;
+  ValidationContext context{std::string(file), ".", dim, nullptr, &diagnostics};
+  const json j = parse_json(json_text, context.file);
+  ParamValues values = validate(set, j, "", context);
+  if (!diagnostics.empty()) throw InputError(diagnostics.format());
+  return values;
+}
+
+}  // namespace talus

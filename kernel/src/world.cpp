@@ -1,0 +1,39 @@
+#include "talus/world.hpp"
+
+#include "talus/blocks.hpp"
+
+namespace talus {
+
+const char* to_string(BodyKind kind) {
+  switch (kind) {
+    case BodyKind::fluid: return "fluid";
+    case BodyKind::wall: return "wall";
+    case BodyKind::block: return "block";
+  }
+  return "?";
+}
+
+World::World() = default;
+World::~World() = default;
+
+void World::refresh_material_index() {
+  material_index_.assign(materials.size(), {});
+  const auto mat = fluid.material();
+  for (std::size_t i = 0; i < fluid.size(); ++i)
+    if (mat[i] >= 0 && static_cast<std::size_t>(mat[i]) < materials.size())
+      material_index_[mat[i]].push_back(static_cast<Index>(i));
+}
+
+int World::find_material(std::string_view name) const {
+  for (std::size_t i = 0; i < materials.size(); ++i)
+    if (materials[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+int World::find_body(std::string_view name) const {
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    if (bodies[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+}  // namespace talus

@@ -1,0 +1,41 @@
+// Shapes in a scene body's "shape" (a one-of object) and the lattices of
+// particles that fill them or wall them in. Particles sit on a lattice of
+// spacing dp with the first layer dp/2 inside a face, so that fluid and wall
+// lattices meet with spacing dp across the wall surface.
+//
+//   box        { min, max }
+//   sphere     { centre, radius }
+//   cylinder   { base, axis, radius, height }          (3D)
+//   half_space { point, normal }  fills the domain on the side opposite the normal
+//   box_walls  { min, max, open: ["+z", ...] }         walls outside the box
+//   mesh       { file, scale, offset }                 closed STL/OBJ surface
+//   wedge      { origin, length, width, height }       right-angled prism (blocks)
+//   tetrahedron{ vertices }                            4 points (blocks)
+//   polyhedron { vertices, faces }                     convex, faces CCW from outside (blocks)
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "talus/config.hpp"
+#include "talus/params.hpp"
+#include "talus/vec3.hpp"
+
+namespace talus {
+
+// Declares the "shape" one-of of a scene body (all alternatives; which ones a
+// body kind accepts is checked with the body).
+TALUS_API void declare_shape(ParamSet& body);
+
+// Points of a lattice of spacing dp inside the shape (`shape` is the body's
+// values, `alternative` the chosen shape). box_walls has no inside: error.
+TALUS_API std::vector<Vec3> fill_points(const std::string& alternative, const ParamValues& shape, double dp,
+                                        int dim, const Vec3& domain_lo, const Vec3& domain_hi);
+
+// `layers` layers of wall particles just outside the shape's surface (for
+// box_walls, outside the box except on open faces; for the others, inside the
+// solid shape, so that fluid outside it is walled).
+TALUS_API std::vector<Vec3> wall_points(const std::string& alternative, const ParamValues& shape, double dp, int dim,
+                                        int layers, const Vec3& domain_lo, const Vec3& domain_hi);
+
+}  // namespace talus

@@ -1,0 +1,92 @@
+// Structure-of-arrays particle store (DESIGN.md principle 2). Fields are
+// registered by name on demand: a plugin asks for "mu_eff" and only then is it
+// allocated. Every field is one contiguous array (a Vec3 field is an array of
+// Vec3), so a pair loop touches only the arrays it needs.
+//
+// Always present: "id" (global id, survives re-sorting and removal, ready for
+// halo exchange), "body" (index of the scene body), "material" (index of the
+// material, or -1), "position".
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "talus/config.hpp"
+#include "talus/vec3.hpp"
+
+namespace talus {
+
+enum class FieldType { scalar, vector, integer, id };
+
+// What the host and the writers need to know about a field.
+struct FieldInfo {
+  std::string name;
+  FieldType type = FieldType::scalar;
+  std::string unit;       // SI unit text
+  bool output = true;     // written by writers that write "all" fields
+  bool restart = true;    // saved in checkpoints (state, not derived)
+};
+
+class TALUS_API ParticleStore {
+ public:
+  ParticleStore();
+
+  std::size_t size() const { return size_; }
+
+  // Registers a field if it does not exist yet (idempotent; the type must
+  // match an existing registration) and returns nothing: use the accessors.
+  void require(const FieldInfo& info);
+  bool has(std::string_view name) const;
+  const FieldInfo& info(std::string_view name) const;
+  std::vector<FieldInfo> fields() const;
+
+  std::span<double> scalar(std::string_view name);
+  std::span<const double> scalar(std::string_view name) const;
+  std::span<Vec3> vector(std::string_view name);
+  std::span<const Vec3> vector(std::string_view name) const;
+  std::span<std::int32_t> integer(std::string_view name);
+  std::span<const std::int32_t> integer(std::string_view name) const;
+  std::span<std::uint64_t> ids();
+  std::span<const std::uint64_t> ids() const;
+
+  // Frequent fields, by direct handle.
+  std::span<Vec3> position() { return vector("position"); }
+  std::span<const Vec3> position() const { return vector("position"); }
+  std::span<std::int32_t> body() { return integer("body"); }
+  std::span<const std::int32_t> body() const { return integer("body"); }
+  std::span<std::int32_t> material() { return integer("material"); }
+  std::span<const std::int32_t> material() const { return integer("material"); }
+
+  // Appends n particles with zeroed fields and fresh global ids; returns the
+  // index of the first one.
+  std::size_t append(std::size_t n);
+  // Applies a permutation: new[i] = old[order[i]] for every field.
+  void reorder(std::span<const Index> order);
+  // Removes particles whose flag is non-zero, keeping the order of the rest.
+  std::size_t remove_if(std::span<const std::uint8_t> flags);
+  void reserve(std::size_t n);
+
+  std::uint64_t next_id() const { return next_id_; }
+  void set_next_id(std::uint64_t id) { next_id_ = id; }
+
+ private:
+  using Column = std::variant<std::vector<double>, std::vector<Vec3>, std::vector<std::int32_t>,
+                              std::vector<std::uint64_t>>;
+  struct Field {
+    FieldInfo info;
+    Column data;
+  };
+  Field& field(std::string_view name, FieldType type);
+  const Field& field(std::string_view name, FieldType type) const;
+
+  std::vector<Field> fields_;
+  std::size_t size_ = 0;
+  std::uint64_t next_id_ = 0;
+  std::vector<std::uint8_t> scratch_;  // reused by reorder, no allocation per call
+};
+
+}  // namespace talus

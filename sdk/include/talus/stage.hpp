@@ -1,0 +1,52 @@
+// Solver stages: the pipeline a scene lists ("wcsph", "dda", ...). The host
+// calls setup once, then every step asks each stage for its stable time step,
+// takes the smallest, and advances the stages in pipeline order.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "talus/plugin.hpp"
+
+namespace talus {
+
+class World;
+
+// What `talus plan` prints for a stage: its passes in order and the fields it
+// reads and writes, so a user sees that an unneeded pass is absent.
+struct StagePlan {
+  std::vector<std::string> passes;
+  std::vector<std::string> reads;
+  std::vector<std::string> writes;
+  std::vector<std::string> notes;
+};
+
+class TALUS_API Stage : public Model {
+ public:
+  ~Stage() override;
+
+  // Registers fields, checks the bodies and materials it handles (throwing
+  // InputError with the JSON pointer on a semantic problem), allocates.
+  virtual void setup(World& world) = 0;
+  // Largest stable dt for the current state (infinity if no limit).
+  virtual double stable_time_step(const World& world) = 0;
+  // Advances this stage's state from world.time to world.time + dt.
+  virtual void advance(World& world, double dt) = 0;
+  virtual StagePlan plan(const World& world) const = 0;
+  // One line for the progress log (e.g. "rho dev 0.3%"), may be empty.
+  virtual std::string status(const World& /*world*/) const { return {}; }
+
+  // State that lives outside the particle store and the block set (contact
+  // history, integrator counters), as opaque bytes for checkpoints. A restart
+  // must continue bit for bit, so everything that influences the next step
+  // and is not a store field belongs here.
+  virtual std::string save_state() const { return {}; }
+  virtual void load_state(std::string_view /*bytes*/) {}
+
+  // Called once after the last step with the output folder (final rasters,
+  // summaries). Lines returned are printed in the run summary.
+  virtual std::vector<std::string> finish(World& /*world*/, const std::string& /*output_directory*/) { return {}; }
+};
+
+}  // namespace talus
