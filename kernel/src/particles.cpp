@@ -118,7 +118,7 @@ void ParticleStore::reorder(std::span<const Index> order) {
           using T = typename std::decay_t<decltype(column)>::value_type;
           scratch_.resize(size_ * sizeof(T));
           T* tmp = reinterpret_cast<T*>(scratch_.data());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (size_ > 4096)
           for (std::size_t i = 0; i < size_; ++i) tmp[i] = column[order[i]];
           std::memcpy(column.data(), tmp, size_ * sizeof(T));
         },

@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -20,9 +21,14 @@ namespace {
 
 constexpr int manifest_version = 1;
 
+// "libx.so" or a versioned "libx.so.1.2", not the manifest "libx.so.talus.json".
 bool is_library(const fs::path& p) {
   const std::string name = p.filename().string();
-  return p.extension() == ".so" || name.find(".so.") != std::string::npos;
+  const auto so = name.rfind(".so");
+  if (so == std::string::npos) return false;
+  for (std::size_t k = so + 3; k < name.size(); ++k)
+    if (!std::isdigit(static_cast<unsigned char>(name[k])) && name[k] != '.') return false;
+  return true;
 }
 
 std::string manifest_path(const std::string& library) { return library + ".talus.json"; }
@@ -126,7 +132,13 @@ void PluginRegistry::index_library(const std::string& raw_path, const std::strin
     record.indexed_by_loading = true;
     libraries_.push_back(record);
     loaded_.emplace_back();
-    load(index);  // reads and checks the descriptor; throws on refusal
+    try {
+      load(index);  // reads and checks the descriptor; throws on refusal
+    } catch (...) {
+      libraries_.pop_back();
+      loaded_.pop_back();
+      throw;
+    }
     manifest = describe_library(path);
   } else {
     if (manifest.value("abi", -1) != sdk_abi_version) {

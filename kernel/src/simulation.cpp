@@ -298,7 +298,7 @@ void Simulation::remove_escaped_particles() {
   auto x = fluid.position();
   escaped_.assign(n, 0);
   std::size_t count = 0;
-#pragma omp parallel for reduction(+ : count) schedule(static)
+#pragma omp parallel for reduction(+ : count) schedule(static) if (n > 4096)
   for (std::size_t i = 0; i < n; ++i) {
     for (int a = 0; a < world_.dim; ++a) {
       const double L = world_.hi[a] - world_.lo[a];
@@ -335,7 +335,7 @@ void Simulation::check_finite() const {
   const auto rho = f.scalar("density");
   const auto p = f.scalar("pressure");
   std::size_t bad = n;
-#pragma omp parallel for reduction(min : bad) schedule(static)
+#pragma omp parallel for reduction(min : bad) schedule(static) if (n > 4096)
   for (std::size_t i = 0; i < n; ++i)
     if (!is_finite(x[i]) || !is_finite(u[i]) || !std::isfinite(rho[i]) || !std::isfinite(p[i])) bad = std::min(bad, i);
   if (bad == n) return;
@@ -440,7 +440,10 @@ int Simulation::run(const RunOptions& options) {
     }
     return name.str();
   };
-  double next_checkpoint_time = checkpoint_every > 0 ? world_.time + checkpoint_every : 0.0;
+  // Checkpoints fall on multiples of `every`, so a restarted run keeps the schedule.
+  const double time_eps = 1e-9 * world_.end_time;
+  double next_checkpoint_time =
+      checkpoint_every > 0 ? (std::floor(world_.time / checkpoint_every + 1e-9) + 1.0) * checkpoint_every : 0.0;
 
   stop_signal.store(0);
   auto old_int = std::signal(SIGINT, on_stop_signal);
@@ -479,11 +482,12 @@ int Simulation::run(const RunOptions& options) {
       if (world_.step % resort_every_ == 0) resort_particles();
       check_finite();
       write_due_outputs(false);
-      if ((checkpoint_every > 0 && world_.time >= next_checkpoint_time) ||
+      if ((checkpoint_every > 0 && world_.time >= next_checkpoint_time - time_eps) ||
           (checkpoint_minutes > 0 && progress.elapsed() - wall_at_last_checkpoint >= 60.0 * checkpoint_minutes)) {
         checkpoint();
         wall_at_last_checkpoint = progress.elapsed();
-        while (checkpoint_every > 0 && next_checkpoint_time <= world_.time) next_checkpoint_time += checkpoint_every;
+        while (checkpoint_every > 0 && next_checkpoint_time <= world_.time + time_eps)
+          next_checkpoint_time += checkpoint_every;
       }
       std::string status;
       if (options.verbose)

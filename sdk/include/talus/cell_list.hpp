@@ -51,7 +51,7 @@ class CellList {
     const std::size_t n = pos.size();
     cell_of_.resize(n);
     order_.resize(n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > 4096)
     for (std::size_t i = 0; i < n; ++i) cell_of_[i] = cell_index(pos[i]);
     std::fill(cell_start_.begin(), cell_start_.end(), 0);
     for (std::size_t i = 0; i < n; ++i) ++cell_start_[cell_of_[i] + 1];

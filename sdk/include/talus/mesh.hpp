@@ -11,7 +11,7 @@
 
 namespace talus {
 
-struct TriangleMesh {
+struct TALUS_API TriangleMesh {
   std::vector<Vec3> vertices;
   std::vector<std::array<int, 3>> triangles;  // counter-clockwise seen from outside
 

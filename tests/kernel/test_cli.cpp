@@ -1,0 +1,129 @@
+// The `talus` command end to end with a test stage: exit codes, pinned
+// messages, nothing written on bad input, restart bit for bit, SIGINT.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <thread>
+
+#include "process.hpp"
+
+namespace fs = std::filesystem;
+using talus::test::read_file;
+using talus::test::run_command;
+
+namespace {
+
+const std::string exe = std::string("TALUS_PLUGIN_PATH=") + TALUS_TEST_PLUGINS + "/good " + TALUS_EXE;
+const std::string scenes = TALUS_TEST_SCENES;
+
+std::string fresh_dir(const std::string& name) {
+  const std::string dir = std::string(TALUS_BINARY_DIR) + "/tests/cli_" + name;
+  fs::remove_all(dir);
+  return dir;
+}
+
+TEST(Cli, HelpAndVersion) {
+  EXPECT_EQ(run_command(exe + " --version").exit_code, 0);
+  const auto help = run_command(exe + " --help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.output.find("talus COMMAND"), std::string::npos);
+  EXPECT_EQ(run_command(exe + " frobnicate").exit_code, 2);
+}
+
+TEST(Cli, ValidateReportsAllThreeErrorsAndWritesNothing) {
+  const std::string out = fresh_dir("three_errors");
+  const auto r = run_command("cd " + std::string(TALUS_BINARY_DIR) + " && " + exe + " run " + scenes +
+                             "/three_errors.json --out " + out);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  const std::string file = scenes + "/three_errors.json";
+  EXPECT_EQ(r.output,
+            "error: " + file + ": /bodies/0/dp: expected a number, got the string \"fine\"\n"
+            "error: " + file + ": /pipeline/0/dt: -0.001 is out of range; must be > 0\n"
+            "error: " + file + ": /time/resort_evry: unknown parameter in time\n"
+            "       did you mean 'resort_every'?  known: dt_max, end, max_steps, resort_every\n"
+            "3 errors in " + file + "; nothing was run.\n");
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_EQ(run_command(exe + " validate " + scenes + "/three_errors.json").exit_code, 2);
+}
+
+TEST(Cli, ValidatePlanAndDocOnAGoodScene) {
+  const auto v = run_command(exe + " validate " + scenes + "/ballistic.json");
+  EXPECT_EQ(v.exit_code, 0) << v.output;
+  EXPECT_NE(v.output.find("valid (100 fluid particles"), std::string::npos) << v.output;
+  const auto p = run_command(exe + " plan " + scenes + "/ballistic.json");
+  EXPECT_EQ(p.exit_code, 0) << p.output;
+  EXPECT_NE(p.output.find("1. ballistic"), std::string::npos) << p.output;
+  EXPECT_NE(p.output.find("pass 1: kick-drift over fluid particles"), std::string::npos) << p.output;
+  EXPECT_NE(p.output.find("talus-test-good 1.2.3"), std::string::npos) << p.output;
+  const auto d = run_command(exe + " doc ballistic");
+  EXPECT_EQ(d.exit_code, 0);
+  EXPECT_NE(d.output.find("dt"), std::string::npos);
+  EXPECT_EQ(run_command(exe + " doc balistic").exit_code, 2);
+}
+
+TEST(Cli, RestartContinuesBitForBit) {
+  const std::string a = fresh_dir("restart_a"), b = fresh_dir("restart_b");
+  const auto full = run_command(exe + " run " + scenes + "/ballistic.json --quiet --threads 2 --out " + a);
+  ASSERT_EQ(full.exit_code, 0) << full.output;
+  const std::string mid = a + "/ballistic_00000050.checkpoint";
+  const std::string end = a + "/ballistic_00000100.checkpoint";
+  ASSERT_TRUE(fs::exists(mid));
+  ASSERT_TRUE(fs::exists(end));
+  const auto resumed = run_command(exe + " run " + scenes + "/ballistic.json --quiet --threads 2 --out " + b +
+                                   " --restart " + mid);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  const std::string end_b = b + "/ballistic_00000100.checkpoint";
+  ASSERT_TRUE(fs::exists(end_b));
+  EXPECT_TRUE(read_file(end) == read_file(end_b)) << "restarted run differs from the uninterrupted one";
+}
+
+TEST(Cli, NonFiniteValueStopsWithParticleBodyAndPosition) {
+  const std::string dir = fresh_dir("nan");
+  const std::string scene = dir + "_scene.json";
+  std::string text = read_file(scenes + "/ballistic.json");
+  text.replace(text.find("\"dt\": 0.001"), 11, "\"dt\": 0.001, \"nan_at\": 0.02");
+  talus::test::write_file(scene, text);
+  const auto r = run_command(exe + " run " + scene + " --quiet --out " + dir);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("error: step 20 (t = 0.02 s): particle "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("of body 'drop' at ("), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("has non-finite velocity"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("last good output:"), std::string::npos) << r.output;
+}
+
+TEST(Cli, UnwritableOutputFolderIsARunError) {
+  const auto r = run_command(exe + " run " + scenes + "/ballistic.json --quiet --out /proc/version/out");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("error: cannot create output folder /proc/version/out"), std::string::npos) << r.output;
+}
+
+TEST(Cli, SigintWritesAResumableCheckpoint) {
+  const std::string dir = fresh_dir("sigint"), scene = dir + "_scene.json";
+  std::string text = read_file(scenes + "/ballistic.json");
+  text.replace(text.find("\"dt\": 0.001"), 11, "\"dt\": 0.001, \"sleep\": 0.002");
+  talus::test::write_file(scene, text);
+  const std::string log = dir + "_log.txt";
+  // Start in the background, interrupt after a while, wait for it.
+  const auto r = run_command("(" + exe + " run " + scene + " --out " + dir + " > " + log +
+                             " 2>&1 & pid=$!; sleep 0.1; kill -INT $pid; wait $pid; echo exit=$?)");
+  const std::string out = read_file(log);
+  EXPECT_NE(r.output.find("exit=130"), std::string::npos) << r.output << out;
+  const auto pos = out.find("--restart ");
+  ASSERT_NE(pos, std::string::npos) << out;
+  const std::string checkpoint = out.substr(pos + 10, out.find('\n', pos) - pos - 10);
+  ASSERT_TRUE(fs::exists(checkpoint)) << checkpoint;
+  const auto resumed = run_command(exe + " run " + scene + " --quiet --out " + dir + " --restart " + checkpoint);
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.output;
+  // The interrupted-and-resumed run ends exactly where an uninterrupted one does.
+  const std::string whole = fresh_dir("sigint_whole");
+  ASSERT_EQ(run_command(exe + " run " + scene + " --quiet --out " + whole).exit_code, 0);
+  const std::string name = "/cli_sigint_scene_00000100.checkpoint";
+  ASSERT_TRUE(fs::exists(dir + name));
+  EXPECT_TRUE(read_file(dir + name) == read_file(whole + name));
+}
+
+}  // namespace

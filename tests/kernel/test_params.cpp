@@ -1,0 +1,151 @@
+// The validator: every problem collected with its JSON pointer, messages
+// pinned, defaults filled, semantic checks run only on well-formed input.
+#include <gtest/gtest.h>
+
+#include "talus/error.hpp"
+#include "talus/params.hpp"
+#include "validator.hpp"
+
+namespace talus {
+namespace {
+
+ParamSet hbp_like() {
+  ParamSet p{"hbp", "test rheology"};
+  p.real("yield_stress").unit("Pa").min(0.0).doc("yield stress");
+  p.real("viscosity").unit("Pa s").greater_than(0.0).doc("consistency");
+  p.real("flow_index").greater_than(0.0).default_value(1.0).doc("n");
+  p.real("regularisation").unit("s").greater_than(0.0).default_value(100.0).doc("m");
+  return p;
+}
+
+// A catalogue with one kind, "rheology", holding "hbp" and "bingham".
+class FakeCatalogue final : public ModelCatalogue {
+ public:
+  std::vector<std::string> model_names(std::string_view kind) const override {
+    return kind == "rheology" ? std::vector<std::string>{"bingham", "hbp"} : std::vector<std::string>{};
+  }
+  const ParamSet* model_params(std::string_view kind, std::string_view name) override {
+    if (kind == "rheology" && name == "hbp") return &hbp_;
+    return nullptr;
+  }
+
+ private:
+  ParamSet hbp_ = hbp_like();
+};
+
+ParamSet scene_like() {
+  ParamSet material{"material", "a material"};
+  material.real("density").unit("kg/m^3").greater_than(0.0).doc("rho0");
+  material.model("rheology", "rheology").optional().doc("rheology");
+  ParamSet s{"scene", "test scene"};
+  s.object_map("materials", material).doc("materials");
+  s.choice("integrator", {"symplectic", "verlet"}).default_value("symplectic").doc("scheme");
+  s.vector("gravity").unit("m/s^2").default_value({0, 0, -9.81}, {0, -9.81}).doc("g");
+  s.integer("steps").min(1).optional().doc("count");
+  return s;
+}
+
+Diagnostics check(const ParamSet& set, const std::string& text, ParamValues* out = nullptr, int dim = 3) {
+  Diagnostics d;
+  FakeCatalogue catalogue;
+  ValidationContext c{"dam_break.json", ".", dim, &catalogue, &d};
+  ParamValues v = validate(set, parse_json(text, "dam_break.json"), "", c);
+  if (out) *out = v;
+  return d;
+}
+
+TEST(Validator, MessagesFromTheDesignBrief) {
+  const Diagnostics d = check(scene_like(), R"({
+    "materials": { "sand": { "density": 1800,
+      "rheology": { "type": "hbp", "yield_stres": 10, "viscosity": 1, "flow_index": -0.5 } } } })");
+  EXPECT_EQ(d.format(),
+            "error: dam_break.json: /materials/sand/rheology/yield_stres: unknown parameter for rheology 'hbp'\n"
+            "       did you mean 'yield_stress'?  known: flow_index, regularisation, viscosity, yield_stress\n"
+            "error: dam_break.json: /materials/sand/rheology/yield_stress: missing required parameter (yield stress)\n"
+            "error: dam_break.json: /materials/sand/rheology/flow_index: -0.5 is out of range; must be > 0\n");
+}
+
+TEST(Validator, TypeChoiceAndModelNameErrorsAreAllCollected) {
+  const Diagnostics d = check(scene_like(), R"({
+    "materials": { "mud": { "density": "heavy", "rheology": { "type": "bingam" } } },
+    "integrator": "leapfrog", "gravity": [0, -9.81], "steps": 2.5 })");
+  ASSERT_EQ(d.size(), 5u) << d.format();
+  EXPECT_EQ(d.items()[0].pointer, "/materials/mud/density");
+  EXPECT_EQ(d.items()[0].message, "expected a number, got the string \"heavy\"");
+  EXPECT_EQ(d.items()[1].pointer, "/materials/mud/rheology/type");
+  EXPECT_EQ(d.items()[1].message, "unknown rheology 'bingam'");
+  EXPECT_EQ(d.items()[1].hint, "did you mean 'bingham'?  known: bingham, hbp");
+  EXPECT_EQ(d.items()[2].pointer, "/integrator");
+  EXPECT_EQ(d.items()[2].message, "'leapfrog' is not allowed");
+  EXPECT_EQ(d.items()[3].pointer, "/gravity");
+  EXPECT_EQ(d.items()[3].message, "expected an array of 3 numbers, got an array [0,-9.81]");
+  EXPECT_EQ(d.items()[4].pointer, "/steps");
+  EXPECT_EQ(d.items()[4].message, "expected an integer, got 2.5");
+}
+
+TEST(Validator, DefaultsAreFilledAndVectorsFollowTheDimension) {
+  ParamValues v;
+  const Diagnostics d = check(scene_like(), R"({"materials": {}})", &v, 2);
+  ASSERT_TRUE(d.empty()) << d.format();
+  EXPECT_EQ(v.string("integrator"), "symplectic");
+  EXPECT_EQ(v.vector("gravity"), (Vec3{0, -9.81, 0}));
+  EXPECT_FALSE(v.has("steps"));
+}
+
+TEST(Validator, ModelParametersReachTheFactoryTyped) {
+  ParamValues v;
+  const Diagnostics d = check(scene_like(), R"({"materials": {"sand": {"density": 1800,
+      "rheology": {"type": "hbp", "yield_stress": 10, "viscosity": 2}}}})", &v);
+  ASSERT_TRUE(d.empty()) << d.format();
+  const ParamValues& sand = v.objects("materials").at(0);
+  EXPECT_EQ(v.keys("materials").at(0), "sand");
+  EXPECT_EQ(sand.model_name("rheology"), "hbp");
+  EXPECT_DOUBLE_EQ(sand.model_params("rheology").real("viscosity"), 2.0);
+  EXPECT_DOUBLE_EQ(sand.model_params("rheology").real("regularisation"), 100.0);
+  EXPECT_EQ(sand.model_params("rheology").pointer("viscosity"), "/materials/sand/rheology/viscosity");
+}
+
+TEST(Validator, SemanticChecksRunOnlyOnWellFormedObjects) {
+  ParamSet p{"range", "a range"};
+  p.real("lo").doc("lower");
+  p.real("hi").doc("upper");
+  p.check([](const ParamValues& v, Diagnostics& d) {
+    if (v.real("hi") <= v.real("lo")) d.error(v, "hi", "must be greater than lo");
+  });
+  EXPECT_EQ(check(p, R"({"lo": 2, "hi": 1})").format(), "error: dam_break.json: /hi: must be greater than lo\n");
+  // With "hi" missing the check does not run (it would read a missing value).
+  EXPECT_EQ(check(p, R"({"lo": 2})").size(), 1u);
+}
+
+TEST(Validator, OneOfNeedsExactlyOneKnownAlternative) {
+  ParamSet box{"box", "box"};
+  box.vector("min").doc("lo");
+  ParamSet p{"body", "body"};
+  p.one_of("shape").alternative("box", box).doc("shape");
+  EXPECT_EQ(check(p, R"({"shape": {"bx": {}}})").items().at(0).hint, "did you mean 'box'?  known: box");
+  EXPECT_EQ(check(p, R"({"shape": {}})").items().at(0).message,
+            "expected an object with exactly one of: box, got an object");
+}
+
+TEST(Validator, SyntaxErrorsGiveLineAndColumn) {
+  try {
+    parse_json("{\n  \"a\": 1,\n  \"b\" 2\n}", "scene.json");
+    FAIL() << "no exception";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("error: scene.json:3:7: JSON syntax error", 0), 0u) << e.what();
+  }
+}
+
+TEST(Validator, ParamsFromJsonThrowsEveryProblem) {
+  try {
+    params_from_json(hbp_like(), R"({"viscosity": 0})");
+    FAIL() << "no exception";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("/yield_stress: missing required parameter"), std::string::npos) << what;
+    EXPECT_NE(what.find("/viscosity: 0 is out of range; must be > 0"), std::string::npos) << what;
+  }
+}
+
+}  // namespace
+}  // namespace talus

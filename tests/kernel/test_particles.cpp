@@ -1,0 +1,49 @@
+#include <gtest/gtest.h>
+
+#include "talus/particles.hpp"
+
+namespace talus {
+namespace {
+
+TEST(ParticleStore, FieldsAreAllocatedOnlyWhenRequested) {
+  ParticleStore s;
+  EXPECT_FALSE(s.has("mu_eff"));
+  s.append(3);
+  s.require({"mu_eff", FieldType::scalar, "Pa s", true, false});
+  ASSERT_TRUE(s.has("mu_eff"));
+  EXPECT_EQ(s.scalar("mu_eff").size(), 3u);
+  EXPECT_THROW(s.require({"mu_eff", FieldType::vector, "", true, false}), std::logic_error);
+  EXPECT_THROW(s.scalar("strain_rate"), std::logic_error);
+}
+
+TEST(ParticleStore, ReorderAndRemoveKeepEveryFieldAndId) {
+  ParticleStore s;
+  s.require({"rho", FieldType::scalar, "kg/m^3", true, true});
+  s.append(5);
+  auto rho = s.scalar("rho");
+  auto x = s.position();
+  for (std::size_t i = 0; i < 5; ++i) {
+    rho[i] = 1000.0 + static_cast<double>(i);
+    x[i] = {static_cast<double>(i), 0, 0};
+  }
+  const std::vector<Index> order{4, 2, 0, 1, 3};
+  s.reorder(order);
+  for (std::size_t i = 0; i < 5; ++i) {
+    EXPECT_EQ(s.ids()[i], order[i]);
+    EXPECT_EQ(s.scalar("rho")[i], 1000.0 + order[i]);
+    EXPECT_EQ(s.position()[i].x, static_cast<double>(order[i]));
+  }
+  const std::vector<std::uint8_t> drop{0, 1, 0, 0, 1};  // ids 2 and 3
+  EXPECT_EQ(s.remove_if(drop), 2u);
+  ASSERT_EQ(s.size(), 3u);
+  EXPECT_EQ(s.ids()[0], 4u);
+  EXPECT_EQ(s.ids()[1], 0u);
+  EXPECT_EQ(s.ids()[2], 1u);
+  EXPECT_EQ(s.scalar("rho")[2], 1001.0);
+  // New particles get fresh global ids, never reused ones.
+  EXPECT_EQ(s.append(1), 3u);
+  EXPECT_EQ(s.ids()[3], 5u);
+}
+
+}  // namespace
+}  // namespace talus
