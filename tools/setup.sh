@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ccache git pkg-config
   libeigen3-dev libboost-dev nlohmann-json3-dev libhdf5-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
-  python3 python3-numpy python3-matplotlib python3-h5py
+  python3 python3-numpy python3-matplotlib python3-h5py python3-jsonschema
 )
 
 missing=()

@@ -12,7 +12,10 @@
 #include <filesystem>
 #include <iomanip>
 #include <limits>
+#include <fstream>
 #include <ostream>
+
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "checkpoint.hpp"
@@ -528,6 +531,33 @@ int Simulation::run(const RunOptions& options) {
   const double wall = progress.elapsed();
   struct rusage usage {};
   getrusage(RUSAGE_SELF, &usage);
+  if (!options.summary_file.empty()) {
+    nlohmann::json summary = {{"scene", scene_.path},
+                              {"steps", world_.step - first_step},
+                              {"time", world_.time},
+                              {"wall_seconds", wall},
+                              {"fluid_particles", world_.fluid.size()},
+                              {"wall_particles", world_.boundary.size()},
+                              {"blocks", world_.blocks ? world_.blocks->size() : 0},
+                              {"particle_steps", particle_steps},
+                              {"peak_memory_mib", usage.ru_maxrss / 1024.0},
+                              {"removed", world_.removed},
+                              {"threads", omp_get_max_threads()},
+                              {"finish", finish_lines}};
+    nlohmann::json statuses = nlohmann::json::object();
+    for (std::size_t i = 0; i < stages_.size(); ++i) statuses[stage_names_[i]] = stages_[i]->status(world_);
+    summary["stages"] = statuses;
+    nlohmann::json files = nlohmann::json::object();
+    for (const auto& w : writers_) files[w.type] = w.writer->files();
+    summary["outputs"] = files;
+    const std::string tmp = options.summary_file + ".tmp";
+    {
+      std::ofstream out(tmp);
+      out << summary.dump(2) << "\n";
+      if (!out) throw RunError("error: cannot write " + tmp + ": " + std::strerror(errno));
+    }
+    fs::rename(tmp, options.summary_file);
+  }
   if (!options.quiet) {
     const std::uint64_t steps = world_.step - first_step;
     std::printf("talus: done: %llu steps to t = %s s in %s wall (%.3g steps/s, %.3g M particle-steps/s), peak memory %.0f MiB\n",

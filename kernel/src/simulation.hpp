@@ -28,6 +28,7 @@ struct RunOptions {
   bool verbose = false;
   std::string restart;           // checkpoint to continue from
   double progress_seconds = 0.0; // 0: 0.25 s on a terminal, 10 s otherwise
+  std::string summary_file;      // if set: the run summary as JSON (for tools/verify.py)
 };
 
 struct ScheduledWriter {

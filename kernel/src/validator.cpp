@@ -388,7 +388,9 @@ class Validator {
     try {
       set = c_.models ? c_.models->model_params(s.model_kind, name) : nullptr;
     } catch (const InputError& e) {
-      error(kp, e.what());
+      std::string what = e.what();
+      if (what.rfind("error: ", 0) == 0) what.erase(0, 7);
+      error(kp, what);
       return false;
     }
     if (!set) {

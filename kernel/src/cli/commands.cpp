@@ -26,7 +26,7 @@ constexpr const char* default_scene_file = "scenes/block_impact.json";
 
 struct Options {
   std::vector<std::string> positional;
-  std::string out, restart, output_file;
+  std::string out, restart, output_file, summary;
   int threads = 0;
   bool quiet = false, verbose = false;
 };
@@ -51,6 +51,7 @@ Options parse(const Args& args, const std::vector<std::string>& allowed) {
     if (a == "--out") o.out = value();
     else if (a == "--restart") o.restart = value();
     else if (a == "--output") o.output_file = value();
+    else if (a == "--summary") o.summary = value();
     else if (a == "--quiet") o.quiet = true;
     else if (a == "--verbose") o.verbose = true;
     else if (a == "--threads") {
@@ -141,6 +142,7 @@ std::string usage() {
   return "usage: talus COMMAND [options]\n"
          "\n"
          "  run [SCENE] [--out DIR] [--threads N] [--restart CHECKPOINT] [--quiet|--verbose]\n"
+         "      [--summary FILE]  also write the run summary as JSON\n"
          "                       run a scene (no SCENE: the default demo scene)\n"
          "  validate SCENE       check a scene and report every problem; runs nothing\n"
          "  plan SCENE           the resolved pipeline: stages, passes, fields, plugins loaded\n"
@@ -157,7 +159,7 @@ std::string usage() {
 }
 
 int run(const Args& args) {
-  const Options o = parse(args, {"--out", "--threads", "--restart", "--quiet", "--verbose"});
+  const Options o = parse(args, {"--out", "--threads", "--restart", "--quiet", "--verbose", "--summary"});
   if (o.positional.size() > 1) throw InputError("error: talus run takes one scene file\n" + usage());
   const std::string path = o.positional.empty() ? default_scene() : o.positional.front();
   PluginRegistry registry;
@@ -169,6 +171,7 @@ int run(const Args& args) {
   options.quiet = o.quiet;
   options.verbose = o.verbose;
   options.restart = o.restart;
+  options.summary_file = o.summary;
   const int code = simulation.run(options);
   if (code == 0 && o.positional.empty() && !o.quiet)
     std::printf("\nThis was the default scene (%s).\nPreview a frame:  python3 tools/preview.py %s\n", path.c_str(),

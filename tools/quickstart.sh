@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Quick start, step 1 of 2: installs the Debian packages Talus needs, builds
+# it in build/, and runs the default scene (a rock block sliding into water)
+# with its output in out/, then renders a preview picture of the last frame.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash tools/setup.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > build-configure.log || { cat build-configure.log; exit 1; }
+echo "talus quickstart: building (2 cores: a few minutes the first time) ..."
+cmake --build build -j "$(nproc)" 2>&1 | grep -E "error|warning: unused|Linking CXX executable bin/talus" || true
+test -x build/bin/talus || { echo "talus quickstart: the build failed; run 'cmake --build build' to see why"; exit 1; }
+build/bin/talus run --out out/default
+if python3 -c "import h5py, matplotlib" 2>/dev/null && [ -f tools/preview.py ]; then
+  python3 tools/preview.py out/default --output out/default/preview.png && echo "talus quickstart: picture in out/default/preview.png"
+fi
