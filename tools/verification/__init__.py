@@ -1,0 +1,1 @@
+"""The verification harness: case registry, runner and report."""

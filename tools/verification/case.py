@@ -1,0 +1,20 @@
+"""What a validation case module defines (tools/verification/cases/NAME.py):
+
+  NAME        short identifier
+  TITLE       one line for the report
+  SCENE       scene file relative to the repository root (the template)
+  LADDER      resolutions (particle spacing dp, or cells) from coarse to fine, at least three
+  TOLERANCE   dict resolution -> largest acceptable error (same units as error())
+  ERROR_LABEL what error() measures, e.g. "L1 of h / h0" or "front position, relative"
+  REFERENCE   where the reference comes from (analytic formula, data file)
+  configure(scene: dict, resolution: float, option: dict) -> dict
+              returns the scene to run at this resolution with these options
+  error(run: runner.Run) -> float
+              the error of a finished run against the reference
+Optional:
+  OPTIONS     dict option-name -> list of values to sweep (each value changes configure())
+  EXPECTED_ORDER  observed order of convergence the method promises (reported, and the
+                  error must fall with resolution)
+  gates(run) -> list of (name, passed, value-text): stability gates (no NaN, mass, ...)
+  QUICK_INDEX index of the rung --quick runs (default 0)
+"""

@@ -1,0 +1,1 @@
+"""Validation cases, one module each (see ../case.py)."""

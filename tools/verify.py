@@ -1,0 +1,63 @@
+#!/usr/bin/env python3
+"""Speed against error: runs every registered validation case over its
+resolution ladder (and option sweeps) with the `talus` binary, measures
+error, cost and stability, and writes a Markdown report, PNG plots of
+error against wall time, and the raw CSV.
+
+  python3 tools/verify.py                 # full ladder, report in docs/verification/
+  python3 tools/verify.py --quick         # smallest rung of every case (the test suite runs this)
+  python3 tools/verify.py --case hydrostatic_2d --out /tmp/v
+
+Cases live in tools/verification/cases/, one module each; see
+tools/verification/case.py for what a case defines.
+"""
+import argparse
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+from verification import registry, report, runner  # noqa: E402
+
+
+def main():
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--quick", action="store_true", help="only the smallest rung of each case, no sweeps")
+    parser.add_argument("--case", action="append", help="run only this case (repeatable)")
+    parser.add_argument("--talus", default=os.path.join(root, "build", "bin", "talus"), help="the talus binary")
+    parser.add_argument("--out", default=None, help="report folder (default docs/verification, or a scratch folder with --quick)")
+    parser.add_argument("--threads", type=int, default=2, help="OpenMP threads per run")
+    parser.add_argument("--list", action="store_true", help="list the registered cases and exit")
+    args = parser.parse_args()
+
+    cases = registry.load_cases()
+    if args.list:
+        for c in cases:
+            print(f"{c.NAME:28s} {c.TITLE}")
+        return 0
+    if args.case:
+        unknown = set(args.case) - {c.NAME for c in cases}
+        if unknown:
+            print(f"error: unknown case(s) {', '.join(sorted(unknown))}; --list shows them", file=sys.stderr)
+            return 2
+        cases = [c for c in cases if c.NAME in args.case]
+    if not os.access(args.talus, os.X_OK):
+        print(f"error: {args.talus} is not an executable talus; build first or pass --talus", file=sys.stderr)
+        return 2
+    out = args.out or (os.path.join(root, "build", "verify-quick") if args.quick else os.path.join(root, "docs", "verification"))
+    os.makedirs(out, exist_ok=True)
+
+    results = []
+    for case in cases:
+        results.extend(runner.run_case(case, args.talus, root, out, quick=args.quick, threads=args.threads))
+    report.write(results, cases, out, quick=args.quick)
+    failed = [r for r in results if not r.passed]
+    print(f"\n{len(results) - len(failed)} passed, {len(failed)} failed")
+    for r in failed:
+        print(f"  FAILED {r.case} {r.option_label} dp={r.resolution:g}: {r.failure}")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
