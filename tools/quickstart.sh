@@ -11,6 +11,8 @@ echo "talus quickstart: building (2 cores: a few minutes the first time) ..."
 cmake --build build -j "$(nproc)" 2>&1 | grep -E "error|warning: unused|Linking CXX executable bin/talus" || true
 test -x build/bin/talus || { echo "talus quickstart: the build failed; run 'cmake --build build' to see why"; exit 1; }
 build/bin/talus run --out out/default
-if python3 -c "import h5py, matplotlib" 2>/dev/null && [ -f tools/preview.py ]; then
-  python3 tools/preview.py out/default --output out/default/preview.png && echo "talus quickstart: picture in out/default/preview.png"
+python=/usr/bin/python3   # Debian's, with numpy/matplotlib/h5py
+[ -x "$python" ] || python=python3
+if "$python" -c "import h5py, matplotlib" 2>/dev/null && [ -f tools/preview.py ]; then
+  "$python" tools/preview.py out/default --output out/default/preview.png && echo "talus quickstart: picture in out/default/preview.png"
 fi

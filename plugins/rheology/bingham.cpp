@@ -1,0 +1,51 @@
+#include "bingham.hpp"
+
+#include <cmath>
+
+#include "bingham_basal.hpp"
+
+namespace talus::rheology {
+
+ParamSet Bingham::describe() {
+  ParamSet p{"bingham", "Bingham fluid: Papanastasiou-regularised viscosity; infinite-landslide basal shear"};
+  p.real("yield_stress").unit("Pa").min(0.0).doc("yield stress tau_y");
+  p.real("viscosity").unit("Pa s").greater_than(0.0).doc("plastic viscosity mu_p");
+  p.real("regularisation").unit("s").greater_than(0.0).default_value(100.0)
+      .doc("Papanastasiou exponent m of the regularised apparent viscosity");
+  p.choice("basal", {"exact", "pastor"}).default_value("exact")
+      .doc("basal shear: exact cubic root, or Pastor's quadratic approximation (seed eq. 13)");
+  return p;
+}
+
+Bingham::Bingham(const ParamValues& v)
+    : yield_stress_(v.real("yield_stress")),
+      viscosity_(v.real("viscosity")),
+      regularisation_(v.real("regularisation")),
+      pastor_(v.string("basal") == "pastor") {}
+
+void Bingham::apparent_viscosity(std::span<const Index> idx, const ViscosityInputs& in, double* mu) const {
+  const double mp = viscosity_, ty = yield_stress_, m = regularisation_;
+  for (const Index i : idx) {
+    const double d = in.shear_rate[i];
+    const double x = m * d;
+    // (1 - exp(-x)) / d, written with expm1 so that it stays accurate as d -> 0.
+    const double plastic = x > 1e-12 ? -std::expm1(-x) / d : m;
+    mu[i] = mp + ty * plastic;
+  }
+}
+
+void Bingham::basal_shear(std::span<const Index> idx, const BasalInputs& in, double* tau) const {
+  const double ty = yield_stress_, six_mu = 6.0 * viscosity_;
+  if (ty <= 0.0) {  // no yield stress: the Newtonian laminar limit 3 mu v / h
+    for (const Index i : idx) tau[i] = in.depth[i] > 0.0 ? 0.5 * six_mu * in.speed[i] / in.depth[i] : 0.0;
+    return;
+  }
+  for (const Index i : idx) {
+    const double h = in.depth[i];
+    const double a = h > 0.0 ? six_mu * in.speed[i] / (ty * h) : 0.0;
+    const double eta = pastor_ ? bingham_plug_ratio_pastor(a) : bingham_plug_ratio_exact(a);
+    tau[i] = ty / eta;
+  }
+}
+
+}  // namespace talus::rheology

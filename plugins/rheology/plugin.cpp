@@ -1,0 +1,15 @@
+// The rheology plugin library: Newtonian, Bingham, Coulomb and Voellmy.
+#include "bingham.hpp"
+#include "coulomb.hpp"
+#include "newtonian.hpp"
+#include "voellmy.hpp"
+
+TALUS_PLUGIN("talus-rheology", "0.1.0",
+             talus::model_entry<talus::rheology::Newtonian>(
+                 "rheology", "newtonian", "Newtonian fluid; laminar basal shear 3 mu v / h"),
+             talus::model_entry<talus::rheology::Bingham>(
+                 "rheology", "bingham", "Bingham fluid, Papanastasiou-regularised; infinite-landslide basal shear"),
+             talus::model_entry<talus::rheology::Coulomb>(
+                 "rheology", "coulomb", "frictional basal stress with pore pressure ratio (depth-integrated)"),
+             talus::model_entry<talus::rheology::Voellmy>(
+                 "rheology", "voellmy", "Voellmy friction + turbulence basal stress (depth-integrated)"));

@@ -1,0 +1,484 @@
+#include "depth_integrated_sph.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "esri_ascii.hpp"
+#include "talus/error.hpp"
+#include "talus/world.hpp"
+
+namespace talus::runout {
+namespace {
+
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+std::string format(const char* fmt, double a, double b = 0.0, double c = 0.0, double d = 0.0) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, fmt, a, b, c, d);
+  return buf;
+}
+
+}  // namespace
+
+ParamSet DepthIntegratedSph::describe() {
+  ParamSet p{"depth_integrated_sph", "depth-integrated SPH run-out over terrain (plan view, 2D domain)"};
+  declare_terrain(p);
+  p.real("release_thickness").unit("m").greater_than(0.0).optional()
+      .doc("slope-normal thickness of every fluid body's particles at the start (volume = thickness dp^2 / cos)");
+  p.path("thickness_raster").optional()
+      .doc("ESRI ASCII raster of the slope-normal release thickness (cell under each particle); <= 0, no-data or outside: dropped");
+  p.real("cfl").greater_than(0.0).max(1.0).default_value(0.2)
+      .doc("Courant number of dt = cfl l / (sqrt(g h) + |v|)");
+  p.boolean("variable_smoothing").default_value(true)
+      .doc("smoothing length follows the depth (see smoothing_law), within the ratio bounds");
+  p.choice("smoothing_law", {"area", "depth"}).default_value("area")
+      .doc("area: l = (h_over_dp) sqrt(V / sigma), spacing of a flow spreading in plan; depth: l = l0 sigma0 / sigma, "
+           "spacing of a flow spreading along one direction (channels, 1D dam breaks)");
+  p.real("min_smoothing_ratio").greater_than(0.0).default_value(0.5)
+      .doc("lower bound of the smoothing length, as a multiple of the scene's h");
+  p.real("max_smoothing_ratio").greater_than(0.0).default_value(3.0)
+      .doc("upper bound of the smoothing length (thin fronts), as a multiple of the scene's h");
+  p.real("depth_threshold").unit("m").min(0.0).default_value(0.01)
+      .doc("thickness above which a raster cell counts as reached (arrival time, peak velocity)");
+  p.string("rasters").optional()
+      .doc("prefix of the rasters (PREFIX_peak_thickness.asc, ...) written into the output folder at the end of the run");
+  p.real("raster_cell").unit("m").greater_than(0.0).optional()
+      .doc("raster cell size over the domain for analytic terrain (default: the particle spacing); DEMs use their grid");
+  p.integer("raster_every").min(1).default_value(std::int64_t{5}).doc("update the peak rasters every N steps");
+  p.check([](const ParamValues& v, Diagnostics& d) {
+    if (!v.has("release_thickness") && !v.has("thickness_raster"))
+      d.error(v, "release_thickness", "the initial mass needs a thickness",
+              "give release_thickness (m) or thickness_raster (.asc)");
+    if (v.has("release_thickness") && v.has("thickness_raster"))
+      d.error(v, "thickness_raster", "give either release_thickness or thickness_raster, not both");
+    if (v.real("min_smoothing_ratio") > 1.0 || v.real("max_smoothing_ratio") < 1.0)
+      d.error(v, "max_smoothing_ratio", "the smoothing bounds must include 1", "min_smoothing_ratio <= 1 <= max");
+  });
+  return p;
+}
+
+DepthIntegratedSph::DepthIntegratedSph(const ParamValues& v)
+    : params_(v),
+      cfl_(v.real("cfl")),
+      threshold_(v.real("depth_threshold")),
+      variable_smoothing_(v.boolean("variable_smoothing")),
+      depth_law_(v.string("smoothing_law") == "depth"),
+      raster_every_(v.integer("raster_every")) {
+  if (v.has("rasters")) raster_prefix_ = v.string("rasters");
+}
+
+void DepthIntegratedSph::setup(World& world) {
+  const std::string where = "error: " + params_.file() + ": " + params_.pointer() + ": ";
+  if (world.dim != 2)
+    throw InputError(where + "depth_integrated_sph works in plan view (x, y) and needs \"domain\": {\"dim\": 2}; "
+                             "got dim " + std::to_string(world.dim));
+  g_ = norm(world.gravity);
+  if (!(g_ > 0.0)) throw InputError(where + "depth_integrated_sph needs gravity; its magnitude acts along -Z");
+  if (world.kernel.dim() != 2 || !(world.dp > 0.0))
+    throw InputError(where + "depth_integrated_sph needs a 2D SPH kernel (scene \"kernel\") and a fluid body");
+  kernel_ = VariableKernel(world.kernel);
+  kappa_ = world.h / world.dp;
+  dp_ = world.dp;
+  l_min_ = params_.real("min_smoothing_ratio") * world.h;
+  l_max_ = params_.real("max_smoothing_ratio") * world.h;
+  if (!variable_smoothing_) l_min_ = l_max_ = world.h;
+
+  terrain_ = make_terrain(params_);
+  if (const Grid* dem = terrain_->grid()) {
+    const double half = 0.5 * dem->cell;
+    if (world.lo.x < dem->x0 - half || world.hi.x > dem->x_max() + half || world.lo.y < dem->y0 - half ||
+        world.hi.y > dem->y_max() + half)
+      throw InputError(where + "the domain [" + std::to_string(world.lo.x) + ", " + std::to_string(world.hi.x) +
+                       "] x [" + std::to_string(world.lo.y) + ", " + std::to_string(world.hi.y) +
+                       "] reaches beyond the DEM " + terrain_->summary() + "; shrink the domain");
+  }
+  notes_ = {"terrain: " + terrain_->summary(), "gravity " + format("%.4g", g_) + " m/s^2 along -Z"};
+
+  ParticleStore& s = world.fluid;
+  s.require({"velocity", FieldType::vector, "m/s", true, true});
+  s.require({"volume", FieldType::scalar, "m^3", true, true});
+  s.require({"depth", FieldType::scalar, "m", true, true});
+  s.require({"smoothing_length", FieldType::scalar, "m", false, true});
+  s.require({"speed", FieldType::scalar, "m/s", true, false});
+  s.require({"elevation", FieldType::scalar, "m", true, false});
+  s.require({"basal_shear", FieldType::scalar, "Pa", true, false});
+
+  // Release: thickness per particle, dropping those with none.
+  Grid thickness;
+  const bool from_raster = params_.has("thickness_raster");
+  if (from_raster) thickness = read_esri_ascii(params_.string("thickness_raster"), true);
+  {
+    auto pos = s.position();
+    auto body = s.body();
+    auto mat = s.material();
+    auto vol = s.scalar("volume");
+    std::vector<std::uint8_t> drop(s.size(), 0);
+    std::size_t dropped = 0;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      if (mat[i] < 0 || mat[i] >= static_cast<int>(world.materials.size()))
+        throw InputError(where + "fluid particle " + std::to_string(i) + " has no material");
+      double t = params_.has("release_thickness") ? params_.real("release_thickness") : 0.0;
+      if (from_raster) {  // the value of the cell holding the particle (a raster is piecewise constant)
+        const double fx = (pos[i].x - thickness.x0) / thickness.cell, fy = (pos[i].y - thickness.y0) / thickness.cell;
+        const bool inside = fx >= -0.5 && fy >= -0.5 && fx < thickness.ncols - 0.5 && fy < thickness.nrows - 0.5;
+        t = 0.0;
+        if (inside) {
+          const int c = std::clamp(static_cast<int>(std::lround(fx)), 0, thickness.ncols - 1);
+          const int r = std::clamp(static_cast<int>(std::lround(fy)), 0, thickness.nrows - 1);
+          if (thickness.at(c, r) != thickness.nodata) t = thickness.at(c, r);
+        }
+      }
+      if (!(t > 0.0)) {
+        drop[i] = 1;
+        ++dropped;
+        continue;
+      }
+      const Vec3 gz = terrain_->gradient(pos[i].x, pos[i].y);
+      const double dp = body[i] >= 0 && body[i] < static_cast<int>(world.bodies.size()) && world.bodies[body[i]].dp > 0
+                            ? world.bodies[body[i]].dp
+                            : world.dp;
+      vol[i] = t * std::sqrt(1.0 + gz.x * gz.x + gz.y * gz.y) * dp * dp;  // vertical column over dp^2
+    }
+    if (dropped) {
+      s.remove_if(drop);
+      notes_.push_back(std::to_string(dropped) + " particles outside the thickness raster dropped");
+    }
+  }
+  if (s.size() == 0) throw InputError(where + "no fluid particles to release (no fluid body, or zero thickness)");
+  world.refresh_material_index();
+
+  // Materials: each needs a basal shear stress model (none: frictionless).
+  materials_.clear();
+  for (std::size_t m = 0; m < world.materials.size(); ++m) {
+    if (world.material_particles(static_cast<int>(m)).empty()) continue;
+    const Material& mat = world.materials[m];
+    if (!(mat.density > 0.0)) throw InputError(where + "material '" + mat.name + "' needs a density > 0");
+    if (mat.rheology && !mat.rheology->has_basal_shear())
+      throw InputError("error: " + (mat.params.file().empty() ? params_.file() : mat.params.file()) +
+                       ": /materials/" + mat.name +
+                       "/rheology: this rheology has no basal shear stress for depth-integrated flow; allowed: "
+                       "coulomb, voellmy, bingham, newtonian");
+    notes_.push_back("material '" + mat.name + "': " + (mat.rheology ? "basal shear from its rheology" : "frictionless (no rheology)"));
+    materials_.push_back(static_cast<int>(m));
+  }
+
+  {
+    auto vol = s.scalar("volume");
+    auto mass = s.scalar("mass");
+    auto vel = s.vector("velocity");
+    auto mat = s.material();
+    const bool has_mass = s.has("mass");
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      if (has_mass) s.scalar("mass")[i] = world.materials[mat[i]].density * vol[i];
+      vel[i].z = 0.0;
+    }
+    (void)mass;
+    auto l = s.scalar("smoothing_length");
+    std::fill(l.begin(), l.end(), world.h);
+  }
+
+  compute_depth(world, 3);
+
+  // Crown: the highest released point; run-out is measured from it in plan.
+  auto pos = s.position();
+  std::size_t top = 0;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (z_[i] > z_[top]) top = i;
+  crown_ = pos[top];
+
+  Grid layout;
+  if (const Grid* dem = terrain_->grid()) {
+    layout = *dem;
+  } else {
+    const double cell = params_.has("raster_cell") ? params_.real("raster_cell") : world.dp;
+    layout.cell = cell;
+    layout.x0 = world.lo.x + 0.5 * cell;
+    layout.y0 = world.lo.y + 0.5 * cell;
+    layout.resize(std::max(2, static_cast<int>(std::ceil((world.hi.x - world.lo.x) / cell))),
+                  std::max(2, static_cast<int>(std::ceil((world.hi.y - world.lo.y) / cell))), 0.0);
+  }
+  rasters_.configure(layout, *terrain_, threshold_);
+  record(world);
+}
+
+void DepthIntegratedSph::configure_cells(const World& world, double max_smoothing) {
+  const double radius = kernel_.support * max_smoothing;
+  // Re-bin only when the search radius outgrows the cells or shrinks well below them.
+  if (radius > cell_size_ || radius < 0.6 * cell_size_) {
+    cell_size_ = radius * 1.15;
+    cells_.configure(2, world.lo, world.hi, cell_size_, world.periodic);
+  }
+}
+
+void DepthIntegratedSph::update_smoothing(std::span<const double> volume, std::span<double> smoothing) const {
+  if (!variable_smoothing_) return;
+  const double k = kappa_, lo = l_min_, hi = l_max_, k_depth = kappa_ / dp_;
+  if (depth_law_) {
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < volume.size(); ++i) smoothing[i] = std::clamp(k_depth * volume[i] / sigma_[i], lo, hi);
+  } else {
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < volume.size(); ++i)
+      smoothing[i] = std::clamp(k * std::sqrt(volume[i] / sigma_[i]), lo, hi);
+  }
+}
+
+// Samples the terrain and computes sigma (and the smoothing length) at the
+// current positions, `iterations` times, for setup.
+void DepthIntegratedSph::compute_depth(World& world, int iterations) {
+  ParticleStore& s = world.fluid;
+  const std::size_t n = s.size();
+  z_.resize(n);
+  cos_.resize(n);
+  sigma_.resize(n);
+  grad_.resize(n);
+  auto pos = s.position();
+  auto vol = s.scalar("volume");
+  auto ell = s.scalar("smoothing_length");
+  auto depth = s.scalar("depth");
+  terrain_->sample(pos, z_.data(), grad_.data());
+  for (std::size_t i = 0; i < n; ++i) cos_[i] = 1.0 / std::sqrt(1.0 + norm2(grad_[i]));
+  for (int it = 0; it < iterations; ++it) {
+    configure_cells(world, *std::max_element(ell.begin(), ell.end()));
+    cells_.build(pos);
+    const VariableKernel kern = kernel_;
+    const double sup = kern.support;
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      const double li = ell[i];
+      double sum = 0.0;
+      cells_.for_each_neighbour(pos[i], pos, sup * li, [&](Index j, const Vec3&, double r2) {
+        sum += vol[j] * kern.w(std::sqrt(r2), li);
+      });
+      sigma_[i] = sum;
+    }
+    update_smoothing(vol, ell);
+  }
+  for (std::size_t i = 0; i < n; ++i) depth[i] = cos_[i] * sigma_[i];
+  auto elev = s.scalar("elevation");
+  std::copy(z_.begin(), z_.end(), elev.begin());
+}
+
+double DepthIntegratedSph::stable_time_step(const World& world) {
+  const ParticleStore& s = world.fluid;
+  if (s.size() == 0) return inf;
+  auto depth = s.scalar("depth");
+  auto ell = s.scalar("smoothing_length");
+  auto speed = s.scalar("speed");
+  double dt = inf;
+  const double g = g_;
+#pragma omp parallel for reduction(min : dt) schedule(static)
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const double c = std::sqrt(g * std::max(depth[i], 0.0)) + speed[i];
+    if (c > 0.0) dt = std::min(dt, ell[i] / c);
+  }
+  dt *= cfl_;
+  // Driving acceleration bound (a particle starting from rest on a slope).
+  const double lmin = *std::min_element(ell.begin(), ell.end());
+  const double a = std::max(max_accel_, g);
+  dt = std::min(dt, 0.5 * std::sqrt(lmin / a));
+  return dt;
+}
+
+void DepthIntegratedSph::advance(World& world, double dt) {
+  ParticleStore& s = world.fluid;
+  const std::size_t n = s.size();
+  if (n == 0) return;
+  if (speed_.size() != n) {
+    z_.resize(n); cos_.resize(n); sigma_.resize(n); speed_.resize(n); density_.resize(n); gn_.resize(n);
+    tau_.resize(n); grad_.resize(n); accel_.resize(n); alpha_.resize(n);
+  }
+  auto pos = s.position();
+  auto vel = s.vector("velocity");
+  auto vol = s.scalar("volume");
+  auto ell = s.scalar("smoothing_length");
+  auto depth = s.scalar("depth");
+  auto mat = s.material();
+  const double g = g_;
+
+  // 1. Terrain under each particle.
+  terrain_->sample(pos, z_.data(), grad_.data());
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) cos_[i] = 1.0 / std::sqrt(1.0 + norm2(grad_[i]));
+
+  // 2. Depth: sigma_i = sum_j V_j W(r_ij, l_i) (gather).
+  configure_cells(world, *std::max_element(ell.begin(), ell.end()));
+  cells_.build(pos);
+  const VariableKernel kern = kernel_;
+  const double sup = kern.support, rmax = cell_size_;
+  //    With l = l(sigma), the variational ("grad-h") factor
+  //    alpha_i = 1 - (d sigma_i / d l_i)(d l_i / d sigma_i) enters the pressure
+  //    force (Rodriguez-Paz & Bonet 2005, Comput. Struct. 83): for the area law
+  //    alpha_i = -1 / (2 sigma_i) sum_j V_j r_ij dW/dr(r_ij, l_i); 1 where l is
+  //    at a bound (or fixed). It keeps thin fronts moving at the right speed.
+  const double lo_l = l_min_, hi_l = l_max_;
+  const bool area_law = variable_smoothing_ && !depth_law_, depth_law = variable_smoothing_ && depth_law_;
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double li = ell[i];
+    double sum = 0.0, moment = 0.0;
+    cells_.for_each_neighbour(pos[i], pos, sup * li, [&](Index j, const Vec3&, double r2) {
+      const double r = std::sqrt(r2);
+      sum += vol[j] * kern.w(r, li);
+      moment += vol[j] * r2 * kern.dw_over_r(r, li);
+    });
+    sigma_[i] = sum;
+    depth[i] = cos_[i] * sum;
+    double alpha = 1.0;
+    if (li > lo_l * (1.0 + 1e-12) && li < hi_l * (1.0 - 1e-12)) {
+      if (area_law) alpha = -0.5 * moment / sum;
+      else if (depth_law) alpha = -1.0 - moment / sum;
+    }
+    alpha_[i] = 1.0 / std::max(alpha, alpha_floor_);
+  }
+
+  // 3. Pressure gradient (symmetric in i, j: momentum-conserving on a plane)
+  //    mapped to the surface, plus gravity along the slope.
+  double amax = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : amax)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double li = ell[i], ci2 = cos_[i] * cos_[i];
+    Vec3 a{};
+    cells_.for_each_neighbour(pos[i], pos, rmax, [&](Index j, const Vec3& dx, double r2) {
+      const double r = std::sqrt(r2);
+      const double lj = ell[j];
+      if (r >= sup * std::max(li, lj)) return;
+      const double f = 0.5 * (kern.dw_over_r(r, li) * alpha_[i] + kern.dw_over_r(r, lj) * alpha_[j]);
+      a -= (vol[j] * 0.5 * g * (ci2 + cos_[j] * cos_[j]) * f) * dx;
+    });
+    const Vec3 gz = grad_[i];
+    // (I + gz gz^T)^-1 a = a - gz (gz . a) / (1 + |gz|^2) = a - gz (gz . a) cos^2
+    a -= (dot(gz, a) * ci2) * gz;
+    a -= (g * ci2) * gz;
+    a.z = 0.0;
+    accel_[i] = a;
+    amax = std::max(amax, norm(a));
+  }
+  max_accel_ = amax;
+
+  // 4. Kick with the driving forces; speed along the surface.
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec3 v = vel[i] + dt * accel_[i];
+    v.z = 0.0;
+    vel[i] = v;
+    const double vz = dot(grad_[i], v);
+    speed_[i] = std::sqrt(norm2(v) + vz * vz);
+    density_[i] = world.materials[mat[i]].density;
+    gn_[i] = g * cos_[i];
+    tau_[i] = 0.0;
+  }
+
+  // 5. Basal shear: one batch call per material.
+  const BasalInputs in{depth.data(), speed_.data(), density_.data(), gn_.data()};
+  for (const int m : materials_) {
+    const Rheology* rh = world.materials[m].rheology;
+    if (rh) rh->basal_shear(world.material_particles(m), in, tau_.data());
+  }
+
+  // 6. Friction acts against the motion and at most stops it within the step
+  //    (implicit: a particle whose speed friction can absorb this step stops),
+  //    then drift.
+  auto shear = s.scalar("basal_shear");
+  auto out_speed = s.scalar("speed");
+  const Vec3 lo = world.lo, hi = world.hi;
+  const auto periodic = world.periodic;
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double decel = depth[i] > 0.0 ? tau_[i] / (density_[i] * depth[i]) * dt : 0.0;
+    const double sp = speed_[i];
+    double factor = 1.0;
+    if (decel > 0.0) factor = sp > decel ? 1.0 - decel / sp : 0.0;
+    vel[i] *= factor;
+    out_speed[i] = sp * factor;
+    shear[i] = tau_[i];
+    Vec3 x = pos[i] + dt * vel[i];
+    for (int k = 0; k < 2; ++k)
+      if (periodic[k]) {
+        const double L = hi[k] - lo[k];
+        if (x[k] < lo[k]) x[k] += L;
+        else if (x[k] >= hi[k]) x[k] -= L;
+      }
+    pos[i] = x;
+  }
+
+  // 7. The smoothing length follows the new depth.
+  update_smoothing(vol, ell);
+
+  const bool last = world.end_time > 0.0 && world.time + dt >= world.end_time * (1.0 - 1e-12);
+  if (last || (world.step + 1) % static_cast<std::uint64_t>(raster_every_) == 0) {
+    // Rasters and run-out at the new time.
+    const double t = world.time;
+    world.time += dt;
+    record(world);
+    world.time = t;
+  }
+}
+
+std::vector<std::string> DepthIntegratedSph::finish(World& world, const std::string& output_directory) {
+  std::vector<std::string> lines;
+  char line[160];
+  std::snprintf(line, sizeof line, "run-out distance %.4g m, deposit volume %.6g m^3", runout_, total_volume(world));
+  lines.emplace_back(line);
+  if (!raster_prefix_.empty())
+    for (const auto& file : write_rasters(output_directory + "/" + raster_prefix_)) lines.push_back("raster: " + file);
+  return lines;
+}
+
+void DepthIntegratedSph::record(World& world) {
+  ParticleStore& s = world.fluid;
+  auto pos = s.position();
+  auto elev = s.scalar("elevation");
+  auto depth = s.scalar("depth");
+  double runout = runout_;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    elev[i] = terrain_->elevation(pos[i].x, pos[i].y);
+    if (depth[i] > threshold_) runout = std::max(runout, norm(pos[i] - crown_));
+  }
+  runout_ = runout;
+  rasters_.record(pos, s.scalar("volume"), s.scalar("smoothing_length"), s.scalar("speed"), kernel_, world.time);
+}
+
+std::vector<std::string> DepthIntegratedSph::write_rasters(const std::string& prefix) const {
+  return rasters_.write(prefix, *terrain_);
+}
+
+double DepthIntegratedSph::total_volume(const World& world) const {
+  double v = 0.0;
+  for (const double x : world.fluid.scalar("volume")) v += x;
+  return v;
+}
+
+StagePlan DepthIntegratedSph::plan(const World& world) const {
+  StagePlan p;
+  p.passes = {"terrain sample (elevation, gradient)", "depth: kernel sum of volumes (pair pass)",
+              "pressure gradient + gravity on the slope (pair pass)", "basal shear (rheology batch per material)",
+              "friction (stops, never reverses) + drift", "smoothing length from depth",
+              "rasters every " + std::to_string(raster_every_) + " steps"};
+  p.reads = {"position", "velocity", "volume", "smoothing_length", "material"};
+  p.writes = {"position", "velocity", "depth", "smoothing_length", "speed", "elevation", "basal_shear"};
+  p.notes = notes_;
+  if (!raster_prefix_.empty()) p.notes.push_back("rasters: OUT/" + raster_prefix_ + "_*.asc at the end of the run");
+  (void)world;
+  return p;
+}
+
+std::string DepthIntegratedSph::status(const World& world) const {
+  const ParticleStore& s = world.fluid;
+  auto speed = s.scalar("speed");
+  auto depth = s.scalar("depth");
+  std::size_t moving = 0;
+  double hmax = 0.0, vmax = 0.0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (speed[i] > 0.0) ++moving;
+    hmax = std::max(hmax, depth[i]);
+    vmax = std::max(vmax, speed[i]);
+  }
+  return format("run-out %.4g m, deposit volume %.6g m^3, moving %.3g%%, h max %.3g m", runout_,
+                total_volume(world), s.size() ? 100.0 * moving / s.size() : 0.0, hmax) +
+         format(", v max %.3g m/s", vmax);
+}
+
+}  // namespace talus::runout
