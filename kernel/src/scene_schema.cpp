@@ -48,7 +48,7 @@ ParamSet body_params() {
   declare_shape(b);
   b.vector("velocity").unit("m/s").default_value({0.0, 0.0, 0.0}, {0.0, 0.0}).doc("initial velocity");
   b.boolean("hydrostatic").default_value(false).doc("fluid: start with hydrostatic pressure and density");
-  b.model("boundary", "boundary").optional().doc("wall: how the wall acts on the fluid");
+  b.model("boundary", "boundary").optional().doc("wall or block: how its surface acts on the fluid");
   b.integer("layers").min(1).optional().doc("wall: layers of wall particles (default: enough to cover the kernel)");
   b.real("density").unit("kg/m^3").greater_than(0.0).optional().doc("block: density of the rock");
   b.boolean("fixed").default_value(false).doc("block: never moves (bedrock, walls)");
@@ -82,7 +82,6 @@ ParamSet body_params() {
       forbid("density");
     } else {
       need("density", "a rock \"density\"");
-      forbid("boundary");
       forbid("dp");
       forbid("material");
     }

@@ -181,11 +181,13 @@ void Simulation::build_bodies() {
         p[i] = hydrostatic ? m.density * g * (top - dot(points[k], up)) : 0.0;
         rho[i] = hydrostatic ? m.eos->density_at(p[i]) : m.density;
       }
-    } else if (body.kind == BodyKind::wall) {
+    }
+    if (v.has("boundary")) {  // walls, and blocks that the fluid sees
       auto boundary = registry_.create_as<Boundary>("boundary", v.model_name("boundary"), v.model_params("boundary"));
       body.boundary = boundary.get();
       models_.push_back(std::move(boundary));
-    } else if (v.has("contact")) {
+    }
+    if (v.has("contact")) {
       auto contact = registry_.create("contact", v.model_name("contact"), v.model_params("contact"));
       body.contact = contact.get();
       models_.push_back(std::move(contact));

@@ -10,6 +10,8 @@ def load_cases():
     here = os.path.join(os.path.dirname(__file__), "cases")
     cases = []
     for info in sorted(pkgutil.iter_modules([here]), key=lambda m: m.name):
+        if info.name.startswith("_"):
+            continue  # shared helpers, not cases
         module = importlib.import_module(f"verification.cases.{info.name}")
         missing = [k for k in REQUIRED if not hasattr(module, k)]
         if missing:
