@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "talus/config.hpp"
@@ -37,7 +38,9 @@ class CellList {
       }
       n_[a] = std::max(1, static_cast<int>(std::floor(length / cell_size)));
       if (periodic[a] && n_[a] < 3)
-        throw InputError("neighbour search: a periodic axis must span at least 3 search radii");
+        throw InputError("error: the periodic domain axis " + std::string(1, static_cast<char>('x' + a)) + " spans " +
+                         std::to_string(length) + " m, less than 3 search radii (3 x " + std::to_string(cell_size) +
+                         " m): enlarge the domain along it or refine dp");
       cell_[a] = length / n_[a];
       period_[a] = periodic[a] ? length : 0.0;
     }

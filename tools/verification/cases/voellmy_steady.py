@@ -8,9 +8,9 @@ from verification.cases._util import last_frame, set_dp
 NAME = "voellmy_steady"
 TITLE = "Voellmy steady flow on a 30 degree infinite slope"
 SCENE = "share/verification/voellmy_steady.json"
-LADDER = [0.75, 0.5, 0.375]
+LADDER = [0.5, 0.375, 0.25]
 # The issue asks for 1 %; the speed approaches its terminal value as tanh(t / 3.98 s), 0.1 % short after 15 s.
-TOLERANCE = {0.75: 0.01, 0.5: 0.01, 0.375: 0.01}
+TOLERANCE = {0.5: 0.01, 0.375: 0.01, 0.25: 0.01}
 ERROR_LABEL = "relative error of the mean speed after 15 s"
 REFERENCE = "infinite-slope balance v = sqrt(xi h (sin theta - mu cos theta)) = 12.783 m/s"
 
