@@ -1,0 +1,29 @@
+// Which particle fields a writer writes: the scene's "fields" list, or every
+// field the stages marked for output. Resolved once in open(); "position" is
+// always written (as coordinates) and never listed here.
+#pragma once
+
+#include <string_view>
+#include <vector>
+
+#include "talus/particles.hpp"
+
+namespace talus {
+class ParamSet;
+class ParamValues;
+}  // namespace talus
+
+namespace talus::writers {
+
+// Declares the common "fields" parameter (optional string list).
+void declare_fields_parameter(ParamSet& p);
+
+// The fields of `store` to write. With a "fields" list, an unknown name is an
+// InputError pointing at /fields (when `strict`) or skipped (a second store,
+// e.g. the wall particles, that lacks some of them).
+std::vector<FieldInfo> select_fields(const ParticleStore& store, const ParamValues& params, bool strict);
+
+// "a, b, c" of the store's field names, for messages.
+std::string field_names(const ParticleStore& store);
+
+}  // namespace talus::writers

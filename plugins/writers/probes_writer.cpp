@@ -1,0 +1,443 @@
+#include "probes_writer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "field_select.hpp"
+#include "talus/blocks.hpp"
+#include "talus/world.hpp"
+#include "vtu_format.hpp"  // format_real
+
+namespace talus::writers {
+
+namespace {
+// The validator gives an absent optional list as an empty one.
+bool given_strings(const ParamValues& p, const char* name) { return p.has(name) && !p.strings(name).empty(); }
+bool given_points(const ParamValues& p, const char* name) { return p.has(name) && !p.vectors(name).empty(); }
+
+const char* const kIntegralNames[] = {"mass",      "kinetic_energy", "potential_energy",
+                                      "particles", "removed",        "max_speed"};
+const char* const kIntegralUnits[] = {"kg", "J", "J", "", "", "m/s"};
+const char* const kAxis[] = {"x", "y", "z"};
+
+std::string join(const std::vector<std::string>& items, const char* sep) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (i) out += sep;
+    out += items[i];
+  }
+  return out;
+}
+
+std::string point_text(const Vec3& p, int dim) {
+  std::string out = "(";
+  for (int a = 0; a < dim; ++a) out += (a ? ", " : "") + format_real(p[a]);
+  return out + ")";
+}
+}  // namespace
+
+ParamSet ProbesWriter::describe() {
+  ParamSet p{"probes", "CSV time series: SPH-interpolated fields at points, wave gauges, integral quantities"};
+  p.string("file").optional().doc("file name in the output folder; default SCENE_probes.csv");
+  p.vector_list("points").optional().unit("m").doc("points where fields are interpolated (Shepard kernel average)");
+  p.string_list("point_names").optional().doc("column prefixes of the points, one per point; default P1, P2, ...");
+  p.string_list("fields").optional().doc(
+      "fields at the points: a scalar, a vector (all components), NAME_x/_y/_z or NAME_mag; default pressure, "
+      "velocity");
+  p.vector_list("gauges").optional().unit("m").doc(
+      "wave gauges: a point on each vertical line (its vertical coordinate is ignored); column NAME_elevation");
+  p.string_list("gauge_names").optional().doc("column prefixes of the gauges, one per gauge; default G1, G2, ...");
+  p.real("gauge_step")
+      .unit("m")
+      .greater_than(0.0)
+      .optional()
+      .doc("sampling step along a gauge line; default a quarter of the particle spacing");
+  p.real("gauge_threshold")
+      .greater_than(0.0)
+      .less_than(1.0)
+      .default_value(0.5)
+      .doc("kernel fill fraction sum_j V_j W that marks the free surface (0.5 for a flat surface)");
+  p.string_list("integrals", {"mass", "kinetic_energy", "potential_energy", "particles", "removed", "max_speed"})
+      .optional()
+      .doc("integral quantities of the fluid; default mass, kinetic_energy, particles");
+  p.string_list("wall_forces")
+      .optional()
+      .doc(
+          "wall bodies whose pressure force from the fluid is written (NAME_fx, NAME_fy[, NAME_fz]): "
+          "-sum_a sum_j m_a m_j (p_a/rho_a^2 + p_j/rho_j^2) grad_a W over the body's wall particles a");
+  p.boolean("block_forces")
+      .default_value(false)
+      .doc("external force on every block (the coupling force of the last step): NAME_fx, NAME_fy[, NAME_fz]");
+  return p;
+}
+
+ProbesWriter::ProbesWriter(const ParamValues& params) : params_(params) {
+  if (given_points(params, "points")) points_ = params.vectors("points");
+  if (given_strings(params, "point_names")) {
+    point_names_ = params.strings("point_names");
+    if (point_names_.size() != points_.size())
+      params.fail("point_names", std::to_string(point_names_.size()) + " names for " + std::to_string(points_.size()) +
+                                     " points; give one name per point");
+  } else {
+    for (std::size_t i = 0; i < points_.size(); ++i) point_names_.push_back("P" + std::to_string(i + 1));
+  }
+  if (given_points(params, "gauges")) {
+    const auto at = params.vectors("gauges");
+    std::vector<std::string> names;
+    if (given_strings(params, "gauge_names")) {
+      names = params.strings("gauge_names");
+      if (names.size() != at.size())
+        params.fail("gauge_names", std::to_string(names.size()) + " names for " + std::to_string(at.size()) +
+                                       " gauges; give one name per gauge");
+    }
+    for (std::size_t i = 0; i < at.size(); ++i)
+      gauges_.push_back({names.empty() ? "G" + std::to_string(i + 1) : names[i], at[i]});
+  } else if (given_strings(params, "gauge_names")) {
+    params.fail("gauge_names", "names given but no gauges");
+  }
+  gauge_threshold_ = params.real("gauge_threshold");
+  if (params.has("gauge_step")) gauge_step_ = params.real("gauge_step");
+  block_forces_ = params.boolean("block_forces");
+  const std::vector<std::string> defaults{"mass", "kinetic_energy", "particles"};
+  for (const auto& name : given_strings(params, "integrals") ? params.strings("integrals") : defaults) {
+    const auto* it = std::find(std::begin(kIntegralNames), std::end(kIntegralNames), name);
+    integrals_.push_back(static_cast<Quantity>(it - std::begin(kIntegralNames)));
+  }
+}
+
+void ProbesWriter::resolve_columns(const World& world) {
+  const ParticleStore& fluid = world.fluid;
+  std::vector<std::string> fields;
+  if (given_strings(params_, "fields")) {
+    fields = params_.strings("fields");
+  } else {
+    for (const char* f : {"pressure", "velocity"})
+      if (fluid.has(f)) fields.emplace_back(f);
+  }
+  // Per point, the same columns in the same order.
+  std::vector<PointColumn> per_point;
+  std::vector<std::string> suffix, unit;
+  for (const auto& name : fields) {
+    if (fluid.has(name)) {
+      const auto& info = fluid.info(name);
+      if (info.type == FieldType::scalar) {
+        per_point.push_back({0, name, false, 0});
+        suffix.push_back(name);
+        unit.push_back(info.unit);
+        continue;
+      }
+      if (info.type == FieldType::vector) {
+        for (int c = 0; c < world.dim; ++c) {
+          per_point.push_back({0, name, true, c});
+          suffix.push_back(name + "_" + kAxis[c]);
+          unit.push_back(info.unit);
+        }
+        continue;
+      }
+      params_.fail("fields", "'" + name + "' is an integer field; only scalar and vector fields can be interpolated");
+    }
+    const auto us = name.find_last_of('_');
+    const std::string base = us == std::string::npos ? name : name.substr(0, us);
+    const std::string tail = us == std::string::npos ? "" : name.substr(us + 1);
+    int component = -1;
+    if (tail == "x") component = 0;
+    if (tail == "y") component = 1;
+    if (tail == "z" && world.dim == 3) component = 2;
+    if (tail == "mag") component = 3;
+    if (component < 0 || !fluid.has(base) || fluid.info(base).type != FieldType::vector)
+      params_.fail("fields", "no particle field or vector component '" + name +
+                                 "' in this scene; known fields: " + field_names(fluid));
+    per_point.push_back({0, base, true, component});
+    suffix.push_back(name);
+    unit.push_back(fluid.info(base).unit);
+  }
+
+  names_ = {"time", "step"};
+  units_ = {"s", ""};
+  point_columns_.clear();
+  for (std::size_t p = 0; p < points_.size(); ++p)
+    for (std::size_t c = 0; c < per_point.size(); ++c) {
+      PointColumn col = per_point[c];
+      col.point = p;
+      point_columns_.push_back(col);
+      names_.push_back(point_names_[p] + "_" + suffix[c]);
+      units_.push_back(unit[c]);
+    }
+  for (const auto& g : gauges_) {
+    names_.push_back(g.name + "_elevation");
+    units_.push_back("m");
+  }
+  for (auto q : integrals_) {
+    names_.emplace_back(kIntegralNames[static_cast<int>(q)]);
+    units_.emplace_back(kIntegralUnits[static_cast<int>(q)]);
+  }
+  for (int b : wall_bodies_)
+    for (int c = 0; c < world.dim; ++c) {
+      names_.push_back(world.bodies[b].name + "_f" + kAxis[c]);
+      units_.push_back("N");
+    }
+  block_count_ = block_forces_ && world.blocks ? world.blocks->size() : 0;
+  for (std::size_t b = 0; b < block_count_; ++b)
+    for (int c = 0; c < world.dim; ++c) {
+      names_.push_back(world.blocks->name[b] + "_f" + kAxis[c]);
+      units_.push_back("N");
+    }
+}
+
+std::string ProbesWriter::comment_lines(const OutputContext& context, const World& world) const {
+  std::string out = "# talus probes: scene " + context.scene_name + ", Talus " + context.talus_version + "\n";
+  out += "# units: " + join(units_, ",") + "\n";
+  if (!points_.empty()) {
+    out += "# points:";
+    for (std::size_t p = 0; p < points_.size(); ++p)
+      out += " " + point_names_[p] + "=" + point_text(points_[p], world.dim);
+    out += "\n# interpolation: Shepard kernel average sum_j f_j V_j W / sum_j V_j W, V_j = m_j/rho_j, support " +
+           format_real(world.kernel.support_radius()) + " m\n";
+  }
+  if (!gauges_.empty()) {
+    out += "# gauges (free-surface elevation along the " + std::string(kAxis[vertical_]) +
+           " axis where sum_j V_j W = " + format_real(gauge_threshold_) + ", step " + format_real(gauge_step_) + " m):";
+    for (const auto& g : gauges_) out += " " + g.name + "=" + point_text(g.at, world.dim);
+    out += "\n";
+  }
+  if (!wall_bodies_.empty())
+    out +=
+        "# wall forces: pressure force of the fluid on the wall particles of each body, "
+        "-sum_a sum_j m_a m_j (p_a/rho_a^2 + p_j/rho_j^2) grad_a W, N\n";
+  if (block_count_ > 0) out += "# block forces: external force of the last step (coupling), N\n";
+  return out;
+}
+
+std::size_t ProbesWriter::resume_bytes(const std::string& header, std::uint64_t step, std::uint64_t& last_step,
+                                       bool& rows) const {
+  std::ifstream in(path_, std::ios::binary);
+  if (!in) return 0;
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  std::size_t kept = 0, pos = 0;
+  bool header_seen = false;
+  while (pos < text.size()) {
+    const auto end = text.find('\n', pos);
+    if (end == std::string::npos) break;  // an incomplete last line
+    const std::string line = text.substr(pos, end - pos);
+    if (!line.empty() && line[0] == '#') {
+      if (header_seen) break;
+    } else if (!header_seen) {
+      if (line != header) return 0;  // other columns: start afresh
+      header_seen = true;
+    } else {
+      const auto c1 = line.find(',');
+      const auto c2 = line.find(',', c1 + 1);
+      if (c1 == std::string::npos) break;
+      const std::uint64_t row_step = std::strtoull(line.substr(c1 + 1, c2 - c1 - 1).c_str(), nullptr, 10);
+      if (row_step > step) break;
+      last_step = row_step;
+      rows = true;
+    }
+    pos = end + 1;
+    kept = pos;
+  }
+  return header_seen ? kept : 0;
+}
+
+void ProbesWriter::open(const OutputContext& context, const World& world) {
+  check_writable_directory(context.directory);
+  vertical_ = world.dim - 1;
+  wall_bodies_.clear();
+  if (given_strings(params_, "wall_forces")) {
+    for (const auto& name : params_.strings("wall_forces")) {
+      const int b = world.find_body(name);
+      if (b < 0 || world.bodies[b].kind != BodyKind::wall) {
+        std::string walls;
+        for (const auto& body : world.bodies)
+          if (body.kind == BodyKind::wall) walls += (walls.empty() ? "" : ", ") + body.name;
+        params_.fail("wall_forces", "no wall body '" + name + "'; wall bodies: " + (walls.empty() ? "none" : walls));
+      }
+      wall_bodies_.push_back(b);
+    }
+    for (const char* f : {"mass", "density", "pressure"})
+      if (!world.fluid.has(f) || !world.boundary.has(f))
+        params_.fail("wall_forces", std::string("needs the field '") + f +
+                                        "' on fluid and wall particles (an SPH stage with wall particles)");
+  }
+  if (!points_.empty() || !gauges_.empty() || !wall_bodies_.empty()) {
+    const char* key = !points_.empty() ? "points" : (!gauges_.empty() ? "gauges" : "wall_forces");
+    if (!(world.kernel.support_radius() > 0.0))
+      params_.fail(key, "probes and gauges need an SPH kernel (scene key /kernel)");
+    auto inside = [&](const Vec3& p, bool skip_vertical) {
+      for (int a = 0; a < world.dim; ++a)
+        if (!(skip_vertical && a == vertical_) && (p[a] < world.lo[a] || p[a] > world.hi[a])) return false;
+      return true;
+    };
+    for (std::size_t p = 0; p < points_.size(); ++p)
+      if (!inside(points_[p], false))
+        params_.fail("points", point_names_[p] + " at " + point_text(points_[p], world.dim) + " is outside the domain");
+    for (const auto& g : gauges_)
+      if (!inside(g.at, true))
+        params_.fail("gauges", g.name + " at " + point_text(g.at, world.dim) + " is outside the domain");
+    sampler_.configure(world.dim, world.lo, world.hi, world.periodic, world.kernel);
+    if (gauge_step_ <= 0.0) gauge_step_ = world.dp > 0.0 ? 0.25 * world.dp : 0.25 * world.kernel.h();
+  }
+  resolve_columns(world);
+
+  path_ =
+      join_path(context.directory, params_.has("file") ? params_.string("file") : context.scene_name + "_probes.csv");
+  const std::string header = join(names_, ",");
+  std::uint64_t last_kept_step = 0;
+  bool kept_rows = false;
+  const std::size_t keep = context.resume ? resume_bytes(header, world.step, last_kept_step, kept_rows) : 0;
+  file_.open(path_, keep);
+  if (keep == 0) file_.append(comment_lines(context, world) + header + "\n");
+  // After a restart the host may write the checkpoint's state again.
+  have_last_step_ = kept_rows && last_kept_step == world.step;
+  last_step_ = last_kept_step;
+}
+
+double ProbesWriter::integral(Quantity q, const World& world) const {
+  const ParticleStore& s = world.fluid;
+  const std::size_t n = s.size();
+  const bool has_mass = s.has("mass");
+  const auto mass = has_mass ? s.scalar("mass") : std::span<const double>{};
+  const auto vel = s.has("velocity") ? s.vector("velocity") : std::span<const Vec3>{};
+  const auto pos = s.position();
+  double sum = 0.0;
+  switch (q) {
+    case Quantity::particles:
+      return static_cast<double>(n);
+    case Quantity::removed:
+      return static_cast<double>(world.removed);
+    case Quantity::mass:
+      if (!has_mass) return std::numeric_limits<double>::quiet_NaN();
+#pragma omp parallel for reduction(+ : sum)
+      for (std::size_t i = 0; i < n; ++i) sum += mass[i];
+      return sum;
+    case Quantity::kinetic_energy:
+      if (!has_mass || vel.empty()) return std::numeric_limits<double>::quiet_NaN();
+#pragma omp parallel for reduction(+ : sum)
+      for (std::size_t i = 0; i < n; ++i) sum += 0.5 * mass[i] * norm2(vel[i]);
+      return sum;
+    case Quantity::potential_energy: {
+      if (!has_mass) return std::numeric_limits<double>::quiet_NaN();
+      const Vec3 g = world.gravity;
+#pragma omp parallel for reduction(+ : sum)
+      for (std::size_t i = 0; i < n; ++i) sum -= mass[i] * dot(g, pos[i]);
+      return sum;
+    }
+    case Quantity::max_speed: {
+      if (vel.empty()) return std::numeric_limits<double>::quiet_NaN();
+      double peak = 0.0;
+#pragma omp parallel for reduction(max : peak)
+      for (std::size_t i = 0; i < n; ++i) peak = std::max(peak, norm2(vel[i]));
+      return std::sqrt(peak);
+    }
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+Vec3 ProbesWriter::wall_force(int body, const World& world) const {
+  // The pressure term of the SPH momentum equation between fluid particles j
+  // and the body's wall particles a (symmetric form, Monaghan 2005 eq. 3.13):
+  //   F = -sum_a m_a sum_j m_j (p_a/rho_a^2 + p_j/rho_j^2) grad_a W_aj,
+  // the force the fluid's pressure exerts on the wall. For a flat wall under a
+  // uniform pressure p it tends to p A along the inward normal.
+  const ParticleStore& wall = world.boundary;
+  const ParticleStore& fluid = world.fluid;
+  const auto xa = wall.position();
+  const auto owner = wall.body();
+  const auto ma = wall.scalar("mass"), rhoa = wall.scalar("density"), pa = wall.scalar("pressure");
+  const auto mj = fluid.scalar("mass"), rhoj = fluid.scalar("density"), pj = fluid.scalar("pressure");
+  const KernelTable& kernel = sampler_.kernel();
+  double fx = 0.0, fy = 0.0, fz = 0.0;
+#pragma omp parallel for reduction(+ : fx, fy, fz) schedule(static)
+  for (std::size_t a = 0; a < wall.size(); ++a) {
+    if (owner[a] != body) continue;
+    const double qa = pa[a] / (rhoa[a] * rhoa[a]);
+    Vec3 f{};
+    sampler_.for_each_neighbour(xa[a], [&](Index j, const Vec3& dx, double r) {
+      f -= (mj[j] * (qa + pj[j] / (rhoj[j] * rhoj[j])) * kernel.dw_over_r(r)) * dx;
+    });
+    fx += ma[a] * f.x;
+    fy += ma[a] * f.y;
+    fz += ma[a] * f.z;
+  }
+  return {fx, fy, fz};
+}
+
+void ProbesWriter::write(const World& world) {
+  if (have_last_step_ && world.step == last_step_) return;
+  const ParticleStore& fluid = world.fluid;
+  row_.clear();
+  row_ += format_real(world.time) + "," + std::to_string(world.step);
+  auto put = [&](double v) {
+    row_ += ',';
+    row_ += format_real(v);
+  };
+
+  if (!points_.empty() || !gauges_.empty() || !wall_bodies_.empty()) {
+    const std::size_t n = fluid.size();
+    volume_.resize(n);
+    if (fluid.has("mass") && fluid.has("density")) {
+      const auto m = fluid.scalar("mass");
+      const auto rho = fluid.scalar("density");
+#pragma omp parallel for
+      for (std::size_t i = 0; i < n; ++i) volume_[i] = m[i] / rho[i];
+    } else {
+      std::fill(volume_.begin(), volume_.end(), std::pow(world.dp, world.dim));
+    }
+    sampler_.bind(fluid.position(), volume_);
+  }
+
+  std::size_t c = 0;
+  for (std::size_t p = 0; p < points_.size(); ++p) {
+    const double weight_sum = sampler_.gather(points_[p], neighbours_);
+    for (; c < point_columns_.size() && point_columns_[c].point == p; ++c) {
+      const auto& col = point_columns_[c];
+      if (!col.vector) {
+        const auto f = fluid.scalar(col.field);
+        put(SphSampler::shepard(neighbours_, weight_sum, [&](Index j) { return f[j]; }));
+        continue;
+      }
+      const auto v = fluid.vector(col.field);
+      if (col.component < 3) {
+        const int k = col.component;
+        put(SphSampler::shepard(neighbours_, weight_sum, [&](Index j) { return v[j][k]; }));
+      } else {
+        double m2 = 0.0;
+        for (int k = 0; k < world.dim; ++k) {
+          const double vk = SphSampler::shepard(neighbours_, weight_sum, [&](Index j) { return v[j][k]; });
+          m2 += vk * vk;
+        }
+        put(std::sqrt(m2));
+      }
+    }
+  }
+  for (const auto& g : gauges_)
+    put(surface_elevation(sampler_, g.at, vertical_, world.lo[vertical_], world.hi[vertical_], gauge_step_,
+                          gauge_threshold_));
+  for (auto q : integrals_) put(integral(q, world));
+  for (int body : wall_bodies_) {
+    const Vec3 f = wall_force(body, world);
+    for (int k = 0; k < world.dim; ++k) put(f[k]);
+  }
+  for (std::size_t b = 0; b < block_count_; ++b) {
+    const bool present = world.blocks && b < world.blocks->size();
+    for (int k = 0; k < world.dim; ++k)
+      put(present ? world.blocks->external_force[b][k] : std::numeric_limits<double>::quiet_NaN());
+  }
+  row_ += '\n';
+  file_.append(row_);
+  have_last_step_ = true;
+  last_step_ = world.step;
+}
+
+void ProbesWriter::close(const World& /*world*/) { file_.close(); }
+
+std::vector<std::string> ProbesWriter::files() const {
+  if (path_.empty()) return {};
+  return {path_};
+}
+
+}  // namespace talus::writers

@@ -1,0 +1,85 @@
+// "probes" writer: one CSV row per call (the host schedules it with the common
+// "every"/"every_steps" keys) with
+//  - SPH-interpolated fields at points (Shepard, see sph_sampler.hpp): any
+//    scalar field, a vector field's components (NAME -> NAME_x, NAME_y[, NAME_z]),
+//    one component (NAME_x) or the magnitude (NAME_mag);
+//  - wave gauges: free-surface elevation along vertical lines;
+//  - integral quantities of the fluid: mass, kinetic and potential energy,
+//    particle count, particles removed, peak speed;
+//  - forces: the fluid's pressure force on wall bodies (the SPH pair force
+//    between fluid and wall particles, summed over the body's wall particles)
+//    and the external (coupling) force on each block.
+// The file is append-only: '#' comment lines, a header row, then one row per
+// frame written with one write(2); a failed write is cut back so the file
+// always ends with a complete row. Layout: docs/output-formats.md.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "file_io.hpp"
+#include "sph_sampler.hpp"
+#include "talus/params.hpp"
+#include "talus/writer.hpp"
+
+namespace talus::writers {
+
+class ProbesWriter final : public Writer {
+ public:
+  static ParamSet describe();
+  explicit ProbesWriter(const ParamValues& params);
+
+  void open(const OutputContext& context, const World& world) override;
+  void write(const World& world) override;
+  void close(const World& world) override;
+  std::vector<std::string> files() const override;
+
+  // The header row (column names), for tests and tools.
+  const std::vector<std::string>& columns() const { return names_; }
+
+ private:
+  enum class Quantity { mass, kinetic_energy, potential_energy, particles, removed, max_speed };
+  struct PointColumn {
+    std::size_t point;
+    std::string field;
+    bool vector;
+    int component;  // 0..2, or 3 = magnitude (vectors)
+  };
+  struct Gauge {
+    std::string name;
+    Vec3 at;
+  };
+
+  void resolve_columns(const World& world);
+  std::string comment_lines(const OutputContext& context, const World& world) const;
+  // Bytes of an existing file to keep on resume (comments, header, rows up to
+  // `step`); 0 to start afresh.
+  std::size_t resume_bytes(const std::string& header, std::uint64_t step, std::uint64_t& last_step, bool& rows) const;
+  double integral(Quantity q, const World& world) const;
+  Vec3 wall_force(int body, const World& world) const;
+
+  ParamValues params_;
+  std::vector<Vec3> points_;
+  std::vector<std::string> point_names_;
+  std::vector<Gauge> gauges_;
+  std::vector<Quantity> integrals_;
+  bool block_forces_ = false;
+  std::vector<int> wall_bodies_;  // scene body indices
+  double gauge_step_ = 0.0, gauge_threshold_ = 0.5;
+  int vertical_ = 2;
+
+  std::vector<PointColumn> point_columns_;
+  std::vector<std::string> names_, units_;
+  std::size_t block_count_ = 0;
+  std::string path_;
+  LineFile file_;
+  SphSampler sampler_;
+  std::vector<double> volume_;
+  std::vector<Neighbour> neighbours_;
+  std::string row_;
+  bool have_last_step_ = false;
+  std::uint64_t last_step_ = 0;
+};
+
+}  // namespace talus::writers

@@ -1,0 +1,112 @@
+// SPH sampling of particle fields at arbitrary points, for probes and gauges.
+//
+// Shepard-normalised kernel interpolation (Shepard 1968; Monaghan 2005, Rep.
+// Prog. Phys. 68, sec. 2.3):
+//   f(x) = sum_j f_j V_j W(x - x_j) / sum_j V_j W(x - x_j),   V_j = m_j / rho_j
+// It reproduces constants exactly everywhere and linear fields exactly where
+// the particles around x are symmetric (the first moment sum_j V_j W (x_j - x)
+// vanishes), e.g. at nodes and cell centres of a regular lattice in the bulk.
+// The fill fraction phi(x) = sum_j V_j W(x - x_j) is ~1 inside the fluid and
+// ~0.5 at a free surface; wave gauges use it.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include "talus/cell_list.hpp"
+#include "talus/kernel_table.hpp"
+#include "talus/vec3.hpp"
+
+namespace talus::writers {
+
+struct Neighbour {
+  Index j;
+  double weight;  // V_j W(|x - x_j|)
+};
+
+class SphSampler {
+ public:
+  // Once per run: the domain and the kernel.
+  void configure(int dim, Vec3 lo, Vec3 hi, std::array<bool, 3> periodic, const KernelTable& kernel) {
+    kernel_ = &kernel;
+    cells_.configure(dim, lo, hi, kernel.support_radius(), periodic);
+  }
+  // Once per frame: bins the particles; `volume` is V_j per particle.
+  void bind(std::span<const Vec3> position, std::span<const double> volume) {
+    position_ = position;
+    volume_ = volume;
+    cells_.build(position);
+  }
+
+  // Neighbours of x with their weights into `out` (cleared first); returns
+  // the sum of the weights, i.e. the fill fraction phi(x).
+  double gather(const Vec3& x, std::vector<Neighbour>& out) const {
+    out.clear();
+    double sum = 0.0;
+    const double radius = kernel_->support_radius();
+    cells_.for_each_neighbour(x, position_, radius, [&](Index j, const Vec3&, double r2) {
+      const double w = volume_[j] * kernel_->w(std::sqrt(r2));
+      out.push_back({j, w});
+      sum += w;
+    });
+    return sum;
+  }
+
+  double fill_fraction(const Vec3& x) const {
+    double sum = 0.0;
+    cells_.for_each_neighbour(x, position_, kernel_->support_radius(),
+                              [&](Index j, const Vec3&, double r2) { sum += volume_[j] * kernel_->w(std::sqrt(r2)); });
+    return sum;
+  }
+
+  // Calls f(j, dx, r) for every binned particle within the kernel support of
+  // x, dx = x - x_j (minimum image on periodic axes).
+  template <class F>
+  void for_each_neighbour(const Vec3& x, F&& f) const {
+    cells_.for_each_neighbour(x, position_, kernel_->support_radius(),
+                              [&](Index j, const Vec3& dx, double r2) { f(j, dx, std::sqrt(r2)); });
+  }
+  const KernelTable& kernel() const { return *kernel_; }
+
+  // Shepard average of value(j) over gathered neighbours (NaN if none).
+  template <class Value>
+  static double shepard(const std::vector<Neighbour>& nb, double weight_sum, Value&& value) {
+    if (!(weight_sum > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+    double acc = 0.0;
+    for (const auto& n : nb) acc += n.weight * value(n.j);
+    return acc / weight_sum;
+  }
+
+ private:
+  const KernelTable* kernel_ = nullptr;
+  CellList cells_;
+  std::span<const Vec3> position_;
+  std::span<const double> volume_;
+};
+
+// Free-surface elevation along the vertical line through `at` (vertical axis
+// `axis`): scanning down from `top` in steps of `step`, the highest point
+// where phi >= threshold, placed by linear interpolation of phi between the
+// first sample at or above the threshold and the one above it. NaN when
+// the whole line is dry.
+inline double surface_elevation(const SphSampler& sampler, Vec3 at, int axis, double bottom, double top, double step,
+                                double threshold) {
+  double above_phi = 0.0;
+  for (int k = 0;; ++k) {
+    const double z = top - k * step;
+    if (z < bottom - 1e-12 * step) break;
+    at[axis] = z;
+    const double phi = sampler.fill_fraction(at);
+    if (phi >= threshold) {
+      if (k == 0) return z;
+      return z + step * (phi - threshold) / (phi - above_phi);
+    }
+    above_phi = phi;
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace talus::writers
