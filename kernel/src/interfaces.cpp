@@ -4,6 +4,7 @@
 // visibility (DESIGN.md, "Shape of the runtime").
 #include "talus/blocks.hpp"
 #include "talus/boundary.hpp"
+#include "talus/dda/contact_model.hpp"
 #include "talus/eos.hpp"
 #include "talus/error.hpp"
 #include "talus/rheology.hpp"
@@ -24,6 +25,7 @@ Boundary::~Boundary() = default;
 Stage::~Stage() = default;
 Writer::~Writer() = default;
 BlockSet::~BlockSet() = default;
+dda::ContactModel::~ContactModel() = default;
 
 void Rheology::apparent_viscosity(std::span<const Index>, const ViscosityInputs&, double*) const {
   throw RunError("this rheology model has no apparent viscosity (it is a basal-stress model only)");
