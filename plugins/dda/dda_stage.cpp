@@ -1,5 +1,7 @@
 #include "dda_stage.hpp"
 
+#include <cstring>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -109,6 +111,7 @@ void DdaStage::setup(World& world) {
 
 void DdaStage::build_blocks(World& world) {
   world.blocks = std::make_unique<BlockSet>();
+  energy_ = &world.blocks->energy;
   BlockSet& b = *world.blocks;
   for (std::size_t bi = 0; bi < world.bodies.size(); ++bi) {
     const Body& body = world.bodies[bi];
@@ -464,6 +467,117 @@ std::string DdaStage::status(const World& world) const {
                   format("%.3g", dt_stable_) + " s";
   if (last_substeps_ > 1) s += " x " + std::to_string(last_substeps_) + " sub-steps";
   return s + ", E kin " + format("%.4g", e.kinetic) + " J, dissipated " + format("%.4g", e.dissipated) + " J";
+}
+
+}  // namespace talus::dda
+
+namespace talus::dda {
+
+namespace {
+
+// Flat binary (same build, same machine: checkpoints are not an exchange format).
+struct StateWriter {
+  std::string out;
+  template <class T>
+  void value(const T& v) { out.append(reinterpret_cast<const char*>(&v), sizeof v); }
+  template <class T>
+  void vector(const std::vector<T>& v) {
+    value<std::uint64_t>(v.size());
+    out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  }
+};
+
+struct StateReader {
+  std::string_view in;
+  template <class T>
+  void value(T& v) {
+    if (in.size() < sizeof v) throw InputError("error: checkpoint: the dda stage's state is truncated");
+    std::memcpy(&v, in.data(), sizeof v);
+    in.remove_prefix(sizeof v);
+  }
+  template <class T>
+  void vector(std::vector<T>& v) {
+    std::uint64_t n = 0;
+    value(n);
+    if (in.size() < n * sizeof(T)) throw InputError("error: checkpoint: the dda stage's state is truncated");
+    v.resize(n);
+    std::memcpy(v.data(), in.data(), n * sizeof(T));
+    in.remove_prefix(n * sizeof(T));
+  }
+};
+
+// ContactKey has padding: its fields go one by one so that equal states
+// give equal bytes (restarts are compared bit for bit).
+void archive_keys(StateWriter& w, const std::vector<ContactKey>& keys) {
+  w.value<std::uint64_t>(keys.size());
+  for (const auto& k : keys) {
+    w.value(k.model);
+    w.value(k.a);
+    w.value(k.b);
+    w.value(k.feature);
+  }
+}
+
+void archive_keys(StateReader& r, std::vector<ContactKey>& keys) {
+  std::uint64_t n = 0;
+  r.value(n);
+  if (r.in.size() < n * 20) throw InputError("error: checkpoint: the dda stage's state is truncated");
+  keys.resize(n);
+  for (auto& k : keys) {
+    r.value(k.model);
+    r.value(k.a);
+    r.value(k.b);
+    r.value(k.feature);
+  }
+}
+
+template <class Archive, class Set>
+void archive_contacts(Archive& a, Set& c) {
+  archive_keys(a, c.key);
+  a.vector(c.point);
+  a.vector(c.normal);
+  a.vector(c.velocity);
+  a.vector(c.shear);
+  a.vector(c.force);
+  a.vector(c.gap);
+  a.vector(c.area);
+  a.vector(c.mass);
+  a.vector(c.strain_energy);
+  a.vector(c.dissipated);
+  a.vector(c.state);
+}
+
+}  // namespace
+
+std::string DdaStage::save_state() const {
+  StateWriter w;
+  w.value(static_cast<std::uint8_t>(started_));
+  w.value(dt_stable_);
+  w.value(slipping_);
+  w.value(energy_ ? *energy_ : BlockEnergy{});
+  w.vector(momentum_);
+  archive_contacts(w, const_cast<ContactSet&>(contacts_));
+  return std::move(w.out);
+}
+
+void DdaStage::load_state(std::string_view bytes) {
+  StateReader r{bytes};
+  std::uint8_t started = 0;
+  r.value(started);
+  started_ = started != 0;
+  r.value(dt_stable_);
+  r.value(slipping_);
+  BlockEnergy energy;
+  r.value(energy);
+  if (energy_) *energy_ = energy;
+  std::vector<Vec3> momentum;
+  r.vector(momentum);
+  if (momentum.size() != momentum_.size())
+    throw InputError("error: checkpoint: it has " + std::to_string(momentum.size()) + " blocks, this scene " +
+                     std::to_string(momentum_.size()));
+  momentum_ = std::move(momentum);
+  archive_contacts(r, contacts_);
+  if (!r.in.empty()) throw InputError("error: checkpoint: the dda stage's state has trailing bytes");
 }
 
 }  // namespace talus::dda

@@ -44,6 +44,11 @@ class DdaStage final : public Stage {
   void advance(World& world, double dt) override;
   StagePlan plan(const World& world) const override;
   std::string status(const World& world) const override;
+  // Checkpoints: contact history, angular momenta, the leapfrog start flag,
+  // the stable step and the energy balance (everything outside BlockSet's
+  // saved fields that the next step reads).
+  std::string save_state() const override;
+  void load_state(std::string_view bytes) override;
 
   // The contact model of a block body when the host does not provide one
   // (tests). Must be called before setup; the model must outlive the stage.
@@ -114,6 +119,7 @@ class DdaStage final : public Stage {
   std::vector<std::size_t> model_begin_;          // contacts_ range of each model
   std::vector<double> stiffness_sum_;             // per block, for the time step
 
+  BlockEnergy* energy_ = nullptr;  // world.blocks->energy, for checkpoints
   double dt_stable_ = std::numeric_limits<double>::infinity();
   int last_substeps_ = 0;
   std::size_t slipping_ = 0;
