@@ -82,7 +82,7 @@ def write(results, cases, out, quick=False):
         lines += [f"## {case.NAME}: {case.TITLE}", "", f"Reference: {case.REFERENCE}. Error: {case.ERROR_LABEL}.", ""]
         if hasattr(case, "EXPECTED_ORDER"):
             lines += [f"Expected order of convergence: {case.EXPECTED_ORDER}.", ""]
-        lines += ["| option | resolution | particles | steps | wall [s] | M particle-steps/s | memory [MiB] | error | tolerance | order | result |",
+        lines += ["| option | resolution | particles (blocks) | steps | wall [s] | M particle-steps/s | memory [MiB] | error | tolerance | order | result |",
                   "|---|---|---|---|---|---|---|---|---|---|---|"]
         for r in rs:
             status = "pass" if r.passed else f"FAIL: {r.failure}"

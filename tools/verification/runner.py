@@ -94,7 +94,7 @@ def run_case(case, talus, root, out, quick=False, threads=2):
             with open(summary_path) as f:
                 summary = json.load(f)
             run = Run(case.NAME, resolution, option, directory, scene, summary, proc.stdout)
-            result.particles = summary["fluid_particles"] + summary.get("wall_particles", 0)
+            result.particles = summary["fluid_particles"] + summary.get("wall_particles", 0) or summary.get("blocks", 0)
             result.steps = summary["steps"]
             result.wall = summary["wall_seconds"] or elapsed
             result.rate = summary["particle_steps"] / result.wall if result.wall > 0 else float("nan")
