@@ -9,6 +9,7 @@
 #include "talus/error.hpp"
 #include "talus/rheology.hpp"
 #include "talus/smoothing_kernel.hpp"
+#include "talus/sph/boundary_pass.hpp"
 #include "talus/stage.hpp"
 #include "talus/writer.hpp"
 
@@ -26,6 +27,7 @@ Stage::~Stage() = default;
 Writer::~Writer() = default;
 BlockSet::~BlockSet() = default;
 dda::ContactModel::~ContactModel() = default;
+sph::SphBoundary::~SphBoundary() = default;
 
 void Rheology::apparent_viscosity(std::span<const Index>, const ViscosityInputs&, double*) const {
   throw RunError("this rheology model has no apparent viscosity (it is a basal-stress model only)");

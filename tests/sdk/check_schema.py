@@ -19,7 +19,8 @@ if kept != generated:
 
 validator = jsonschema.Draft202012Validator(generated)
 scenes = sorted(glob.glob(os.path.join(source, "share", "scenes", "*.json")))
-scenes += sorted(glob.glob(os.path.join(source, "share", "examples", "*", "scene.json")))
+# share/examples/* scenes name out-of-tree plugins the built-in schema cannot know;
+# sdk.out_of_tree_plugin validates those with the plugin loaded.
 failures = 0
 for path in scenes:
     with open(path) as f:

@@ -1,0 +1,307 @@
+#include "dynamic_particles.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "talus/eos.hpp"
+#include "talus/error.hpp"
+#include "talus/geometry.hpp"
+#include "talus/sph/fluid_terms.hpp"
+#include "talus/sph/pair_loop.hpp"
+#include "talus/world.hpp"
+
+namespace talus::boundary {
+
+namespace {
+
+const FieldInfo wall_velocity{"velocity", FieldType::vector, "m/s", true, true};
+const FieldInfo wall_density{"density", FieldType::scalar, "kg/m^3", true, true};
+const FieldInfo wall_pressure{"pressure", FieldType::scalar, "Pa", true, false};
+const FieldInfo wall_mass{"mass", FieldType::scalar, "kg", false, true};
+const FieldInfo wall_sound_speed{"sound_speed", FieldType::scalar, "m/s", false, false};
+const FieldInfo wall_position0{"position0", FieldType::vector, "m", false, true};
+const FieldInfo wall_density_rate{"density_rate", FieldType::scalar, "kg/m^3/s", false, false};
+const FieldInfo wall_density_n{"density_n", FieldType::scalar, "kg/m^3", false, false};
+
+// The wall store's fields over this model's particles [first, first + count).
+struct WallFields {
+  std::span<Vec3> x, v, x0;
+  std::span<double> rho, p, c, m, drho, rho_n;
+  std::span<std::int32_t> mat, body;
+  WallFields(ParticleStore& s, std::size_t first, std::size_t count)
+      : x(s.position().subspan(first, count)),
+        v(s.vector("velocity").subspan(first, count)),
+        x0(s.vector("position0").subspan(first, count)),
+        rho(s.scalar("density").subspan(first, count)),
+        p(s.scalar("pressure").subspan(first, count)),
+        c(s.scalar("sound_speed").subspan(first, count)),
+        m(s.scalar("mass").subspan(first, count)),
+        drho(s.scalar("density_rate").subspan(first, count)),
+        rho_n(s.scalar("density_n").subspan(first, count)),
+        mat(s.material().subspan(first, count)),
+        body(s.body().subspan(first, count)) {}
+  sph::Neighbours neighbours() const { return {v.data(), rho.data(), p.data(), c.data(), m.data(), mat.data()}; }
+};
+
+sph::Neighbours fluid_neighbours(const sph::FluidView& f) {
+  return {f.velocity.data(), f.density.data(), f.pressure.data(), f.sound_speed.data(), f.mass.data(),
+          f.material.data()};
+}
+
+// The wall material: the body's "material", else the only fluid material.
+int wall_material(const World& world, const Body& body) {
+  if (body.material >= 0) return body.material;
+  std::set<int> fluid_materials;
+  for (const Body& b : world.bodies)
+    if (b.kind == BodyKind::fluid && b.material >= 0) fluid_materials.insert(b.material);
+  if (fluid_materials.size() == 1) return *fluid_materials.begin();
+  body.params.fail("material", "wall '" + body.name + "' with dynamic_particles needs a \"material\" (its reference "
+                               "density and EOS) when the scene has " +
+                                   std::to_string(fluid_materials.size()) + " fluid materials");
+}
+
+// Shepard-weighted hydrostatic extrapolation of the fluid pressure to a wall
+// particle b: sums of W_bf and W_bf (p_f + rho_f g . (x_b - x_f)).
+struct ExtrapolationSums {
+  double wsum = 0.0, psum = 0.0;
+};
+struct PressureExtrapolation {
+  static constexpr bool uses_value = true, uses_gradient = false;
+  const double* p;
+  const double* rho;
+  Vec3 g;
+  void pair(const sph::Pair& q, ExtrapolationSums& s) const {
+    // dx = x_i - x_j = x_b - x_f: the hydrostatic step from fluid particle f to wall particle b.
+    s.wsum += q.w;
+    s.psum += q.w * (p[q.j] + rho[q.j] * dot(g, q.dx));
+  }
+};
+
+struct DensitySums {
+  double rho_sum = 0.0;
+};
+
+}  // namespace
+
+ParamSet DynamicParticles::describe() {
+  return ParamSet{"dynamic_particles",
+                  "dynamic boundary particles (DBC, Crespo et al. 2007, as DualSPHysics): wall particles with density "
+                  "from continuity and pressure from the wall material's EOS"};
+}
+
+void DynamicParticles::setup(World& world, std::span<const int> bodies) {
+  ParticleStore& s = world.boundary;
+  for (const FieldInfo* f : {&wall_velocity, &wall_density, &wall_pressure, &wall_mass, &wall_sound_speed,
+                             &wall_position0, &wall_density_rate, &wall_density_n})
+    s.require(*f);
+  if (count_ > 0 && first_ + count_ != s.size())
+    throw RunError("dynamic_particles: setup called again after other wall particles were added");
+  if (count_ == 0) first_ = s.size();
+  slot_of_body_.assign(world.bodies.size(), -1);
+  for (std::size_t k = 0; k < bodies_.size(); ++k) slot_of_body_[bodies_[k]] = static_cast<int>(k);
+
+  const double radius = world.kernel.h() > 0 ? world.kernel.support_radius() : 0.0;
+  for (int bi : bodies) {
+    const Body& body = world.bodies[bi];
+    const ParamValues& v = body.params;
+    const double dp = body.dp > 0 ? body.dp : world.dp;
+    if (!(dp > 0)) v.fail("dp", "wall '" + body.name + "' needs a particle spacing \"dp\"");
+    // Default: enough layers to fill the kernel support behind the wall surface.
+    const int layers = v.has("layers") ? static_cast<int>(v.integer("layers"))
+                                       : std::max(1, static_cast<int>(std::ceil(radius / dp - 1e-9)));
+    const int material = wall_material(world, body);
+    if (!world.materials[material].eos)
+      v.fail("material", "wall '" + body.name + "': material '" + world.materials[material].name +
+                             "' has no \"eos\"; dynamic_particles needs one for the wall pressure");
+    const std::vector<Vec3> points = wall_points(v.alternative("shape"), v.alternative_values("shape"), dp, world.dim,
+                                                 layers, world.lo, world.hi);
+    if (points.empty()) v.fail("shape", "wall '" + body.name + "' has no wall particle at dp = " + std::to_string(dp));
+    const std::size_t first = s.append(points.size());
+    const double rho0 = world.materials[material].density;
+    const double mass = rho0 * std::pow(dp, world.dim);
+    auto x = s.position();
+    auto x0 = s.vector("position0");
+    auto rho = s.scalar("density");
+    auto m = s.scalar("mass");
+    auto mat = s.material();
+    auto bid = s.body();
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const std::size_t i = first + k;
+      x[i] = x0[i] = points[k];
+      rho[i] = rho0;
+      m[i] = mass;
+      mat[i] = material;
+      bid[i] = bi;
+    }
+    slot_of_body_[bi] = static_cast<int>(bodies_.size());
+    bodies_.push_back(bi);
+    body_names_.push_back(body.name);
+    motion_.push_back(v.has("motion") ? PrescribedMotion(v.alternative("motion"), v.alternative_values("motion"))
+                                      : PrescribedMotion());
+    moves_ = moves_ || motion_.back().moves();
+  }
+  count_ = s.size() - first_;
+}
+
+void DynamicParticles::bind(World& world, const sph::FluidSettings& settings) {
+  settings_ = settings;
+  WallFields w(world.boundary, first_, count_);
+  // Per-material index lists for the EOS batch calls (indices in world.boundary).
+  by_material_.assign(world.materials.size(), {});
+  rho0_of_material_.assign(world.materials.size(), 0.0);
+  for (std::size_t m = 0; m < world.materials.size(); ++m) rho0_of_material_[m] = world.materials[m].density;
+  for (std::size_t k = 0; k < count_; ++k) by_material_[w.mat[k]].push_back(static_cast<Index>(first_ + k));
+
+  // Cell list over the fluid's bounds and the walls' own (walls may sit
+  // outside the domain); moving walls are clamped into the edge cells.
+  Vec3 lo = settings.lo, hi = settings.hi;
+  for (const Vec3& p : w.x)
+    for (int a = 0; a < world.dim; ++a) {
+      lo[a] = std::min(lo[a], p[a]);
+      hi[a] = std::max(hi[a], p[a] + 1e-9);
+    }
+  const double radius = settings.kernel->support_radius();
+  cells_.configure(world.dim, lo, hi, radius, world.periodic);
+  cells_.build(w.x);
+  initial_density(world);
+  update_pressure(world);
+}
+
+// Wall pressure extrapolated from the fluid around each wall particle
+// (Adami et al. 2012): p_b = sum_f W_bf (p_f + rho_f g . (x_b - x_f)) / sum_f W_bf,
+// then rho_b = rho(p_b) from the wall material's EOS, never below rho0.
+void DynamicParticles::initial_density(World& world) {
+  ParticleStore& fs = world.fluid;
+  if (fs.size() == 0) return;
+  WallFields w(world.boundary, first_, count_);
+  const auto fx = fs.position();
+  const auto fp = fs.scalar("pressure");
+  const auto frho = fs.scalar("density");
+  const KernelTable& k = *settings_.kernel;
+  sph::NeighbourGrid fluid_cells;
+  fluid_cells.configure(world.dim, settings_.lo, settings_.hi, k.support_radius(), world.periodic);
+  fluid_cells.build(fx);
+  const Vec3 g = world.gravity;
+  const std::span<const Vec3> wx = w.x;
+  auto start = [&](Index) { return ExtrapolationSums{}; };
+  auto finish = [&](Index i, const ExtrapolationSums& s) {
+    if (s.wsum <= 0.0) return;
+    const Material& mat = world.materials[w.mat[i]];
+    const double pb = std::max(0.0, s.psum / s.wsum);
+    w.rho[i] = std::max(mat.density, mat.eos->density_at(pb));
+  };
+  sph::pair_pass(count_, wx, fluid_cells, fx, k, sph::other_set, start, finish,
+                 PressureExtrapolation{fp.data(), frho.data(), g});
+}
+
+void DynamicParticles::update_pressure(World& world) {
+  ParticleStore& s = world.boundary;
+  auto rho = s.scalar("density");
+  auto p = s.scalar("pressure");
+  auto c = s.scalar("sound_speed");
+  for (std::size_t m = 0; m < by_material_.size(); ++m)
+    if (!by_material_[m].empty()) world.materials[m].eos->pressure(by_material_[m], rho.data(), p.data(), c.data());
+  inv_rho_.resize(count_);
+  for (std::size_t b = 0; b < count_; ++b) inv_rho_[b] = 1.0 / rho[first_ + b];
+}
+
+void DynamicParticles::begin_step(World& world) {
+  WallFields w(world.boundary, first_, count_);
+  std::ranges::copy(w.rho, w.rho_n.begin());
+}
+
+void DynamicParticles::interact(World& world, const sph::FluidView& fluid, const sph::FluidRates& rates) {
+  WallFields w(world.boundary, first_, count_);
+  if (moves_) cells_.build(w.x);
+  const KernelTable& kernel = *settings_.kernel;
+  sph::Neighbours wall_nb = w.neighbours();
+  wall_nb.inv_density = inv_rho_.data();
+  const double* mu = settings_.material_mu.data();
+  const bool continuity = !settings_.summation_density;
+
+  // Fluid side: forces and density rates of the walls on fluid particle i.
+  auto start = [&](Index i) {
+    sph::FluidSums s;
+    s.v = fluid.velocity[i];
+    s.rho = fluid.density[i];
+    s.inv_rho = 1.0 / s.rho;
+    s.p = fluid.pressure[i];
+    s.c = fluid.sound_speed[i];
+    s.mu = mu[fluid.material[i]];
+    return s;
+  };
+  auto finish = [&](Index i, const sph::FluidSums& s) {
+    rates.acceleration[i] += s.acc;
+    if (continuity) rates.density_rate[i] += s.drho;
+    rates.visc_rate[i] = std::max(rates.visc_rate[i], s.visc);
+  };
+  const std::size_t nf = fluid.position.size();
+  const sph::PressureForce pressure{wall_nb};
+  const sph::Continuity cont{wall_nb};
+  std::uint64_t pairs = 0;
+  switch (settings_.viscosity) {
+    case sph::ViscosityModel::artificial:
+      pairs = sph::pair_pass(nf, fluid.position, cells_, w.x, kernel, sph::other_set, start, finish, pressure,
+                             sph::ArtificialViscosity{wall_nb, settings_.alpha * kernel.h()}, cont);
+      break;
+    case sph::ViscosityModel::laminar:
+      pairs = sph::pair_pass(nf, fluid.position, cells_, w.x, kernel, sph::other_set, start, finish, pressure,
+                             sph::LaminarViscosity<true>{wall_nb, mu}, cont);
+      break;
+    case sph::ViscosityModel::laplacian:
+      pairs = sph::pair_pass(nf, fluid.position, cells_, w.x, kernel, sph::other_set, start, finish, pressure,
+                             sph::LaplacianViscosity{wall_nb, &kernel}, cont);
+      break;
+  }
+
+  // Wall side: continuity of each wall particle with its fluid neighbours.
+  struct WallSums {
+    Vec3 v;
+    double drho = 0.0;
+  };
+  auto wstart = [&](Index b) { return WallSums{w.v[b], 0.0}; };
+  auto wfinish = [&](Index b, const WallSums& s) { w.drho[b] = s.drho; };
+  pairs += sph::pair_pass(count_, std::span<const Vec3>(w.x), *fluid.cells, fluid.position, kernel, sph::other_set,
+                          wstart, wfinish, sph::Continuity{fluid_neighbours(fluid)});
+  pairs_ = pairs;
+}
+
+void DynamicParticles::add_density(const World& world, const sph::FluidView& fluid, std::span<double> rho) {
+  ParticleStore& s = const_cast<ParticleStore&>(world.boundary);
+  WallFields w(s, first_, count_);
+  auto start = [](Index) { return DensitySums{}; };
+  auto finish = [&](Index i, const DensitySums& sum) { rho[i] += sum.rho_sum; };
+  sph::pair_pass(fluid.position.size(), fluid.position, cells_, std::span<const Vec3>(w.x), *settings_.kernel,
+                 sph::other_set, start, finish, sph::DensitySum{w.m.data()});
+}
+
+void DynamicParticles::advance_walls(World& world, double time, double dt) {
+  WallFields w(world.boundary, first_, count_);
+  const double* rho0 = rho0_of_material_.data();
+#pragma omp parallel for schedule(static) if (count_ >= 4096)
+  for (std::size_t b = 0; b < count_; ++b) {
+    // DualSPHysics: a wall particle never goes below rho0, so walls never pull fluid.
+    w.rho[b] = std::max(rho0[w.mat[b]], w.rho_n[b] + dt * w.drho[b]);
+  }
+  if (moves_) {
+#pragma omp parallel for schedule(static) if (count_ >= 4096)
+    for (std::size_t b = 0; b < count_; ++b) {
+      const PrescribedMotion& motion = motion_[slot_of_body_[w.body[b]]];
+      w.x[b] = motion.position(w.x0[b], time);
+      w.v[b] = motion.velocity(w.x0[b], time);
+    }
+  }
+  update_pressure(world);
+}
+
+void DynamicParticles::describe_passes(StagePlan& plan) const {
+  std::string names;
+  for (const auto& n : body_names_) names += (names.empty() ? "'" : ", '") + n + "'";
+  plan.passes.push_back("fluid-wall pass (dynamic_particles " + names +
+                        "): wall pressure + viscosity + continuity on the fluid");
+  plan.passes.push_back("wall-fluid pass (dynamic_particles " + names + "): wall continuity, wall EOS" +
+                        (moves_ ? ", prescribed motion" : ""));
+}
+
+}  // namespace talus::boundary

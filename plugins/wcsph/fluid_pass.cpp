@@ -1,0 +1,144 @@
+// The fluid-fluid passes of the wcsph stage: the fused force/continuity pass
+// (one neighbour traversal) and the summation-density pass. The scene's
+// choices are resolved here, once per evaluation, into one template
+// instantiation; nothing in the pair loop branches on them.
+#include <cmath>
+
+#include "fluid_fields.hpp"
+#include "talus/eos.hpp"
+#include "talus/sph/fluid_terms.hpp"
+#include "talus/sph/pair_loop.hpp"
+#include "talus/world.hpp"
+#include "wcsph_stage.hpp"
+
+namespace talus::wcsph {
+
+namespace {
+
+struct PassContext {
+  World& world;
+  FluidFields& f;
+  const sph::NeighbourGrid& cells;
+  const double* mu;  // per material
+  Vec3 gravity;
+  sph::Neighbours nb;  // the fluid's fields, with 1/rho and rho/c^2
+};
+
+template <class... Terms>
+std::uint64_t run_force_pass(const PassContext& ctx, const Terms&... terms) {
+  FluidFields& f = ctx.f;
+  const double* mu = ctx.mu;
+  const Vec3 g = ctx.gravity;
+  auto start = [&](Index i) {
+    sph::FluidSums s;
+    s.v = f.v[i];
+    s.rho = f.rho[i];
+    s.inv_rho = ctx.nb.inv_density[i];
+    s.p = f.p[i];
+    s.c = f.c[i];
+    s.mu = mu[f.mat[i]];
+    s.kh = ctx.nb.rho_over_c2[i];
+    return s;
+  };
+  auto finish = [&](Index i, const sph::FluidSums& s) {
+    f.a[i] = s.acc + g;
+    f.drho[i] = s.drho;
+    f.visc[i] = s.visc;
+  };
+  const std::span<const Vec3> x = f.x;
+  return sph::pair_pass(x.size(), x, ctx.cells, x, ctx.world.kernel, sph::same_set, start, finish, terms...);
+}
+
+template <class... Terms>
+std::uint64_t with_density_terms(const PassContext& ctx, DensityMode density, Diffusion diffusion, double delta_h_c0,
+                                 const Terms&... terms) {
+  const sph::Neighbours nb = ctx.nb;
+  if (density == DensityMode::summation) return run_force_pass(ctx, terms...);
+  const sph::Continuity cont{nb};
+  switch (diffusion) {
+    case Diffusion::none: return run_force_pass(ctx, terms..., cont);
+    case Diffusion::molteni:
+      return run_force_pass(ctx, terms..., cont, sph::DensityDiffusion<false>{nb, delta_h_c0, ctx.gravity});
+    case Diffusion::fourtakas:
+      return run_force_pass(ctx, terms..., cont, sph::DensityDiffusion<true>{nb, delta_h_c0, ctx.gravity});
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::uint64_t WcsphStage::fluid_pass(World& world) {
+  FluidFields f(world.fluid);
+  // Per-particle reciprocals once per evaluation instead of divisions per pair.
+  const std::size_t n = f.rho.size();
+  inv_rho_.resize(n);
+  rho_over_c2_.resize(n);
+#pragma omp parallel for schedule(static) if (n >= 4096)
+  for (std::size_t i = 0; i < n; ++i) {
+    inv_rho_[i] = 1.0 / f.rho[i];
+    rho_over_c2_[i] = f.rho[i] / (f.c[i] * f.c[i]);
+  }
+  sph::Neighbours nb = f.neighbours();
+  nb.inv_density = inv_rho_.data();
+  nb.rho_over_c2 = rho_over_c2_.data();
+  const PassContext ctx{world, f, cells_, material_mu_.data(), world.gravity, nb};
+  const sph::PressureForce pressure{nb};
+  const double delta_h_c0 = delta_ * h_ * c0_max_;
+  switch (viscosity_) {
+    case sph::ViscosityModel::artificial:
+      return with_density_terms(ctx, density_, diffusion_, delta_h_c0, pressure,
+                                sph::ArtificialViscosity{nb, alpha_ * h_});
+    case sph::ViscosityModel::laminar:
+      return with_density_terms(ctx, density_, diffusion_, delta_h_c0, pressure,
+                                sph::LaminarViscosity<false>{nb, material_mu_.data()});
+    case sph::ViscosityModel::laplacian:
+      return with_density_terms(ctx, density_, diffusion_, delta_h_c0, pressure,
+                                sph::LaplacianViscosity{nb, &world.kernel});
+  }
+  return 0;
+}
+
+void WcsphStage::density_summation(World& world) {
+  FluidFields f(world.fluid);
+  struct Sums {
+    double rho_sum = 0.0;
+  };
+  const double w0 = world.kernel.w0();
+  const std::span<const double> m = f.m;
+  auto start = [](Index) { return Sums{}; };
+  auto finish = [&](Index i, const Sums& s) { f.rho[i] = s.rho_sum + m[i] * w0; };  // self term W(0)
+  const std::span<const Vec3> x = f.x;
+  pairs_total_ += sph::pair_pass(x.size(), x, cells_, x, world.kernel, sph::same_set, start, finish,
+                                 sph::DensitySum{m.data()});
+  const sph::FluidView view{&cells_, f.x, f.v, f.rho, f.p, f.c, f.m, f.mat};
+  for (sph::SphBoundary* wall : walls_) wall->add_density(world, view, f.rho);
+}
+
+void WcsphStage::update_pressure(World& world) {
+  FluidFields f(world.fluid);
+  for (int m : fluid_materials_)
+    world.materials[m].eos->pressure(world.material_particles(m), f.rho.data(), f.p.data(), f.c.data());
+}
+
+void WcsphStage::compute_rates(World& world) {
+  FluidFields f(world.fluid);
+  cells_.build(f.x);
+  if (density_ == DensityMode::summation) {
+    density_summation(world);
+    update_pressure(world);
+  }
+  pairs_total_ += fluid_pass(world);
+  const sph::FluidView view{&cells_, f.x, f.v, f.rho, f.p, f.c, f.m, f.mat};
+  const sph::FluidRates rates{f.a, f.drho, f.visc};
+  for (sph::SphBoundary* wall : walls_) {
+    wall->interact(world, view, rates);
+    pairs_total_ += wall->pair_count();
+  }
+  ++rate_evaluations_;
+  rates_valid_ = true;
+  rates_step_ = world.step;
+  rates_time_ = world.time;
+  rates_size_ = world.fluid.size();
+}
+
+}  // namespace talus::wcsph

@@ -1,0 +1,247 @@
+#include "wcsph_stage.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+
+#include "fluid_fields.hpp"
+#include "talus/eos.hpp"
+#include "talus/error.hpp"
+#include "talus/rheology.hpp"
+#include "talus/world.hpp"
+
+namespace talus::wcsph {
+
+ParamSet WcsphStage::describe() {
+  ParamSet p{"wcsph", "weakly compressible SPH for water, 2D and 3D (coastline seed; DualSPHysics formulation)"};
+  p.choice("integrator", {"symplectic", "verlet", "predictor_corrector", "euler"})
+      .default_value("symplectic")
+      .doc("time integration: symplectic (2 evaluations/step), verlet (1), predictor_corrector (2), euler (1)");
+  p.integer("verlet_steps").min(1).default_value(40).doc("verlet: a corrective Euler step every this many steps");
+  p.real("courant").greater_than(0.0).max(1.0).default_value(0.2).doc(
+      "Courant number C in dt = C min(sqrt(h/|f|), h/(c + h visc), h^2/nu)");
+  p.choice("viscosity", {"artificial", "laminar", "laplacian"})
+      .default_value("artificial")
+      .doc("artificial (Monaghan, alpha), laminar (Morris/Lo-Shao, material's Newtonian viscosity) or laplacian "
+           "(rock-fluid seed eq. 18, needs the muller kernel)");
+  p.real("alpha").min(0.0).default_value(0.01).doc("artificial viscosity coefficient");
+  p.choice("density", {"continuity", "summation"})
+      .default_value("continuity")
+      .doc("density from the continuity equation or by summation rho_i = sum m_j W_ij");
+  p.choice("density_diffusion", {"none", "molteni", "fourtakas"})
+      .default_value("fourtakas")
+      .doc("delta-SPH density diffusion (continuity only): Molteni-Colagrossi 2009 or Fourtakas et al. 2019");
+  p.real("delta").min(0.0).default_value(0.1).doc("density diffusion coefficient delta");
+  return p;
+}
+
+namespace {
+template <class E>
+E pick(const ParamValues& v, const char* name, std::initializer_list<std::pair<const char*, E>> table) {
+  const std::string& s = v.string(name);
+  for (const auto& [key, value] : table)
+    if (s == key) return value;
+  v.fail(name, "unknown value '" + s + "'");
+}
+}  // namespace
+
+WcsphStage::WcsphStage(const ParamValues& v)
+    : integrator_(pick<Integrator>(v, "integrator",
+                                   {{"symplectic", Integrator::symplectic},
+                                    {"verlet", Integrator::verlet},
+                                    {"predictor_corrector", Integrator::predictor_corrector},
+                                    {"euler", Integrator::euler}})),
+      verlet_steps_(static_cast<int>(v.integer("verlet_steps"))),
+      courant_(v.real("courant")),
+      viscosity_(pick<sph::ViscosityModel>(v, "viscosity",
+                                           {{"artificial", sph::ViscosityModel::artificial},
+                                            {"laminar", sph::ViscosityModel::laminar},
+                                            {"laplacian", sph::ViscosityModel::laplacian}})),
+      alpha_(v.real("alpha")),
+      density_(pick<DensityMode>(v, "density",
+                                 {{"continuity", DensityMode::continuity}, {"summation", DensityMode::summation}})),
+      diffusion_(pick<Diffusion>(v, "density_diffusion",
+                                 {{"none", Diffusion::none},
+                                  {"molteni", Diffusion::molteni},
+                                  {"fourtakas", Diffusion::fourtakas}})),
+      delta_(v.real("delta")),
+      params_(v) {}
+
+void WcsphStage::setup(World& world) {
+  h_ = world.kernel.h();
+  if (!(h_ > 0.0)) throw InputError("error: wcsph: the scene has no SPH kernel; add \"kernel\": {\"type\": ...}");
+  if (viscosity_ == sph::ViscosityModel::laplacian && !world.kernel.has_laplacian())
+    params_.fail("viscosity", "'laplacian' needs a kernel with a Laplacian; allowed with kernel 'muller'");
+  eta2_ = 0.01 * h_ * h_;
+
+  ParticleStore& s = world.fluid;
+  for (const FieldInfo* info : {&field_velocity, &field_density, &field_pressure, &field_mass, &field_sound_speed,
+                                &field_acceleration, &field_density_rate, &field_visc_rate})
+    s.require(*info);
+  if (integrator_ == Integrator::symplectic || integrator_ == Integrator::predictor_corrector)
+    for (const FieldInfo* info : {&field_position_n, &field_velocity_n, &field_density_n}) s.require(*info);
+  if (integrator_ == Integrator::verlet)
+    for (const FieldInfo* info : {&field_velocity_prev, &field_density_prev}) s.require(*info);
+
+  // Materials: every fluid particle's material needs an EOS; laminar
+  // viscosity needs a Newtonian rheology.
+  const std::size_t nm = world.materials.size();
+  material_mu_.assign(std::max<std::size_t>(nm, 1), 0.0);
+  material_rho0_.assign(std::max<std::size_t>(nm, 1), 0.0);
+  std::vector<char> used(nm, 0);
+  for (std::int32_t m : s.material()) {
+    if (m < 0 || static_cast<std::size_t>(m) >= nm)
+      throw InputError("error: wcsph: a fluid particle has no material; every fluid body needs \"material\"");
+    used[m] = 1;
+  }
+  fluid_materials_.clear();
+  c0_max_ = 0.0;
+  nu_max_ = 0.0;
+  for (std::size_t m = 0; m < nm; ++m) {
+    const Material& mat = world.materials[m];
+    material_rho0_[m] = mat.density;
+    if (mat.rheology && mat.rheology->is_newtonian()) material_mu_[m] = mat.rheology->reference_viscosity();
+    if (!used[m]) continue;
+    if (!mat.eos)
+      mat.params.fail("eos", "material '" + mat.name + "' is used by fluid particles but has no equation of state");
+    if (viscosity_ != sph::ViscosityModel::artificial && !(mat.rheology && mat.rheology->is_newtonian()))
+      mat.params.fail("rheology", "viscosity '" + params_.string("viscosity") + "' of stage wcsph needs a Newtonian "
+                                  "rheology for material '" + mat.name + "'; allowed: {\"type\": \"newtonian\", "
+                                  "\"viscosity\": ...}");
+    fluid_materials_.push_back(static_cast<int>(m));
+    c0_max_ = std::max(c0_max_, mat.eos->reference_sound_speed());
+    if (viscosity_ != sph::ViscosityModel::artificial && mat.density > 0.0)
+      nu_max_ = std::max(nu_max_, material_mu_[m] / mat.density);
+  }
+
+  // Boundary models of walls (and of blocks, for fluid-block coupling): each
+  // must be an SPH boundary pass; one pass per model instance.
+  walls_.clear();
+  for (const Body& body : world.bodies) {
+    if (!body.boundary) continue;
+    auto* wall = dynamic_cast<sph::SphBoundary*>(body.boundary);
+    if (!wall)
+      body.params.fail("boundary", "the boundary model of body '" + body.name +
+                                       "' is not an SPH boundary pass and does not work with stage wcsph");
+    if (std::find(walls_.begin(), walls_.end(), wall) == walls_.end()) walls_.push_back(wall);
+  }
+
+  // The fluid's cell list covers the domain plus a margin for particles about
+  // to be removed; periodic axes use the period exactly.
+  const double radius = world.kernel.support_radius();
+  Vec3 lo = world.lo, hi = world.hi;
+  for (int a = 0; a < world.dim; ++a)
+    if (!world.periodic[a]) {
+      lo[a] -= radius;
+      hi[a] += radius;
+    }
+  cells_.configure(world.dim, lo, hi, radius, world.periodic);
+
+  settings_ = sph::FluidSettings{&world.kernel, viscosity_, alpha_, eta2_, material_mu_,
+                                 density_ == DensityMode::summation, lo, hi};
+  world.refresh_material_index();
+  update_pressure(world);
+  cells_.build(world.fluid.position());
+  for (sph::SphBoundary* wall : walls_) wall->bind(world, settings_);
+
+  if (integrator_ == Integrator::verlet) {
+    std::ranges::copy(s.vector("velocity"), s.vector("velocity_prev").begin());
+    std::ranges::copy(s.scalar("density"), s.scalar("density_prev").begin());
+  }
+  verlet_counter_ = 0;
+  rates_valid_ = false;
+}
+
+bool WcsphStage::rates_current(const World& world) const {
+  return rates_valid_ && rates_step_ == world.step && rates_time_ == world.time && rates_size_ == world.fluid.size();
+}
+
+double WcsphStage::stable_time_step(const World& world) {
+  World& w = const_cast<World&>(world);  // the rates at t^n are computed once and reused by advance()
+  if (!rates_current(world)) compute_rates(w);
+  const auto a = world.fluid.vector("acceleration");
+  const auto c = world.fluid.scalar("sound_speed");
+  const auto visc = world.fluid.scalar("visc_rate");
+  double a_max = 0.0, c_max = 0.0, visc_max = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : a_max, c_max, visc_max) if (a.size() >= 4096)
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    a_max = std::max(a_max, norm2(a[i]));
+    c_max = std::max(c_max, c[i]);
+    visc_max = std::max(visc_max, visc[i]);
+  }
+  a_max = std::sqrt(a_max);
+  double dt = std::numeric_limits<double>::infinity();
+  if (a_max > 0.0) dt = std::min(dt, std::sqrt(h_ / a_max));
+  c_max = std::max(c_max, c0_max_);
+  dt = std::min(dt, h_ / (c_max + h_ * visc_max));
+  if (nu_max_ > 0.0) dt = std::min(dt, h_ * h_ / nu_max_);
+  dt *= courant_;
+  for (const sph::SphBoundary* wall : walls_) dt = std::min(dt, wall->stable_time_step(world));
+  return dt;
+}
+
+void WcsphStage::advance(World& world, double dt) {
+  if (world.fluid.size() == 0) return;
+  if (!rates_current(world)) compute_rates(world);
+  switch (integrator_) {
+    case Integrator::euler: step_euler(world, dt); break;
+    case Integrator::verlet: step_verlet(world, dt); break;
+    case Integrator::symplectic:
+    case Integrator::predictor_corrector: step_two_stage(world, dt); break;
+  }
+  rates_valid_ = false;  // the state moved; the next step evaluates again
+}
+
+double WcsphStage::max_density_deviation(const World& world) const {
+  const auto rho = world.fluid.scalar("density");
+  const auto mat = world.fluid.material();
+  double dev = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : dev) if (rho.size() >= 4096)
+  for (std::size_t i = 0; i < rho.size(); ++i) {
+    const double rho0 = material_rho0_[mat[i]];
+    dev = std::max(dev, std::abs(rho[i] / rho0 - 1.0));
+  }
+  return dev;
+}
+
+std::string WcsphStage::save_state() const { return std::to_string(verlet_counter_); }
+
+void WcsphStage::load_state(std::string_view bytes) {
+  verlet_counter_ = bytes.empty() ? 0 : std::stoull(std::string(bytes));
+}
+
+std::string WcsphStage::status(const World& world) const {
+  char line[96];
+  std::snprintf(line, sizeof line, "rho dev %.2f%%", 100.0 * max_density_deviation(world));
+  return line;
+}
+
+StagePlan WcsphStage::plan(const World& world) const {
+  StagePlan plan;
+  const char* visc = viscosity_ == sph::ViscosityModel::artificial ? "artificial viscosity"
+                     : viscosity_ == sph::ViscosityModel::laminar  ? "laminar viscosity (Morris)"
+                                                                   : "Laplacian-kernel viscosity";
+  std::string force = std::string("fluid-fluid pass: pressure + ") + visc;
+  if (density_ == DensityMode::continuity) {
+    force += " + continuity";
+    if (diffusion_ == Diffusion::molteni) force += " + density diffusion (Molteni)";
+    if (diffusion_ == Diffusion::fourtakas) force += " + density diffusion (Fourtakas)";
+  }
+  if (density_ == DensityMode::summation) plan.passes.push_back("fluid-fluid pass: summation density");
+  plan.passes.push_back("EOS: one batch call per material");
+  plan.passes.push_back(force);
+  for (const sph::SphBoundary* wall : walls_) wall->describe_passes(plan);
+  const char* integ = integrator_ == Integrator::symplectic            ? "symplectic (2 evaluations per step)"
+                      : integrator_ == Integrator::verlet              ? "Verlet (1 evaluation per step)"
+                      : integrator_ == Integrator::predictor_corrector ? "predictor-corrector (2 evaluations per step)"
+                                                                       : "explicit Euler (1 evaluation per step)";
+  plan.notes.push_back(std::string("integrator: ") + integ);
+  plan.reads = {"position", "velocity", "density", "mass", "material"};
+  plan.writes = {"position", "velocity", "density", "pressure", "sound_speed", "acceleration", "density_rate"};
+  (void)world;
+  return plan;
+}
+
+}  // namespace talus::wcsph

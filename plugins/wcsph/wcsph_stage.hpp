@@ -1,0 +1,92 @@
+// The `wcsph` stage: weakly compressible SPH for water in 2D and 3D.
+//
+// Equations (coastline seed §2.3 as DualSPHysics implements them, Domínguez
+// et al. 2022, Comput. Part. Mech. 9; rock-fluid seed §3 for its options):
+//   dv_i/dt   = -sum_j m_j (p_i + p_j)/(rho_i rho_j) grad W_ij + viscous + g
+//   drho_i/dt =  sum_j m_j v_ij . grad W_ij + density diffusion      (continuity)
+//   or rho_i  =  sum_j m_j W_ij                                      (summation, seed eq. 12)
+//   p_i       =  EOS of i's material (one batch call per material per evaluation)
+// viscous: Monaghan artificial viscosity (alpha), Morris/Lo-Shao laminar with the
+// material's Newtonian viscosity, or the rock-fluid seed's Laplacian-kernel form
+// (eq. 18, Müller kernel). Density diffusion: Molteni-Colagrossi 2009 or Fourtakas
+// et al. 2019. Time step (coastline seed, CFL condition):
+//   dt = C min( sqrt(h/|f|max), h/(c_max + h max|v_ij.x_ij|/(r^2+eta^2)), h^2/nu_max ).
+// Integrators: symplectic (DualSPHysics, default), Verlet with a corrective
+// step every N (DualSPHysics), predictor-corrector (Monaghan 1989; the seed's),
+// explicit Euler (rock-fluid seed eqs. 20-21).
+// Walls are separate passes: sph::SphBoundary models (boundary_pass.hpp).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "talus/sph/neighbour_grid.hpp"
+#include "talus/sph/boundary_pass.hpp"
+#include "talus/stage.hpp"
+
+namespace talus::wcsph {
+
+enum class Integrator { symplectic, verlet, predictor_corrector, euler };
+enum class DensityMode { continuity, summation };
+enum class Diffusion { none, molteni, fourtakas };
+
+class WcsphStage final : public Stage {
+ public:
+  static ParamSet describe();
+  explicit WcsphStage(const ParamValues& v);
+
+  void setup(World& world) override;
+  double stable_time_step(const World& world) override;
+  void advance(World& world, double dt) override;
+  StagePlan plan(const World& world) const override;
+  std::string status(const World& world) const override;
+  // The Verlet step counter is the only state outside the particle store.
+  std::string save_state() const override;
+  void load_state(std::string_view bytes) override;
+
+  // For tests and benchmarks: evaluate the rates at the current state.
+  void compute_rates(World& world);
+  std::uint64_t pair_evaluations() const { return pairs_total_; }  // since setup
+  std::uint64_t rate_evaluations() const { return rate_evaluations_; }
+  double max_density_deviation(const World& world) const;
+
+ private:
+  void update_pressure(World& world);
+  std::uint64_t fluid_pass(World& world);
+  void density_summation(World& world);
+  bool rates_current(const World& world) const;
+  void step_euler(World& world, double dt);
+  void step_verlet(World& world, double dt);
+  void step_two_stage(World& world, double dt);  // symplectic and predictor-corrector
+
+  // Parameters.
+  Integrator integrator_;
+  int verlet_steps_;
+  double courant_;
+  sph::ViscosityModel viscosity_;
+  double alpha_;
+  DensityMode density_;
+  Diffusion diffusion_;
+  double delta_;
+  ParamValues params_;
+
+  // Set up once.
+  double h_ = 0.0, eta2_ = 0.0, c0_max_ = 0.0, nu_max_ = 0.0;
+  std::vector<double> material_mu_;    // Pa s, per material
+  std::vector<double> material_rho0_;  // kg/m^3, per material
+  std::vector<int> fluid_materials_;   // materials with fluid particles and an EOS
+  std::vector<sph::SphBoundary*> walls_;
+  sph::FluidSettings settings_;
+  sph::NeighbourGrid cells_;
+  std::vector<double> inv_rho_, rho_over_c2_;  // scratch, refilled every evaluation (grow only)
+
+  // Step state.
+  std::uint64_t verlet_counter_ = 0;
+  std::uint64_t pairs_total_ = 0, rate_evaluations_ = 0;
+  bool rates_valid_ = false;
+  std::uint64_t rates_step_ = 0;
+  double rates_time_ = 0.0;
+  std::size_t rates_size_ = 0;
+};
+
+}  // namespace talus::wcsph

@@ -1,0 +1,162 @@
+// Pair terms of weakly compressible SPH (Monaghan 1994/2005; the coastline
+// seed §2.3 as implemented by DualSPHysics, Domínguez et al. 2022), written
+// once and used by the fluid-fluid pass of the wcsph stage and by the
+// fluid-wall passes of boundary models. i is the particle summing, j its
+// neighbour; dx = x_i - x_j, grad = grad_i W_ij. Each term reads the
+// neighbour's fields through a Neighbours view and the i-state from the
+// pass's Sums (duck-typed members named below).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "talus/sph/pair_loop.hpp"
+#include "talus/vec3.hpp"
+
+namespace talus::sph {
+
+// Raw pointers to the neighbour set's fields (set B of a pass).
+struct Neighbours {
+  const Vec3* velocity = nullptr;
+  const double* density = nullptr;
+  const double* pressure = nullptr;
+  const double* sound_speed = nullptr;
+  const double* mass = nullptr;
+  const std::int32_t* material = nullptr;
+  const double* inv_density = nullptr;  // 1/rho, refreshed with the density (saves divisions per pair)
+  const double* rho_over_c2 = nullptr;  // rho/c^2, for the Fourtakas diffusion only
+};
+
+// What a fluid particle i carries through a force pass, and what it sums.
+struct FluidSums {
+  Vec3 v;             // v_i
+  double rho = 0.0;   // rho_i
+  double inv_rho = 0.0;  // 1/rho_i
+  double p = 0.0;     // p_i
+  double c = 0.0;     // c_i
+  double mu = 0.0;    // dynamic viscosity of i's material (laminar)
+  double kh = 0.0;    // rho_i / c_i^2: hydrostatic density gradient per unit g.dx (Fourtakas)
+  Vec3 acc;           // sum of accelerations, m/s^2
+  double drho = 0.0;  // sum of density rates, kg/m^3/s
+  double visc = 0.0;  // max |v_ij . dx| / (r^2 + eta^2), 1/s (time-step bound)
+};
+
+// Symmetric pressure force, momentum conserving (Monaghan 2005 eq. 3.6; rock-
+// fluid seed eq. 14 in this form):  a_i += -sum_j m_j (p_i + p_j)/(rho_i rho_j) grad.
+struct PressureForce {
+  static constexpr bool uses_value = false, uses_gradient = true;
+  Neighbours nb;
+  template <class S>
+  void pair(const Pair& q, S& s) const {
+    const std::size_t j = q.j;
+    const double f = nb.mass[j] * (s.p + nb.pressure[j]) * (s.inv_rho * nb.inv_density[j]);
+    s.acc -= q.grad() * f;
+  }
+};
+
+// Monaghan (1992) artificial viscosity, as in DualSPHysics:
+//   Pi_ij = -alpha cbar_ij mu_ij / rhobar_ij  when v_ij . x_ij < 0,
+//   mu_ij = h v_ij.x_ij / (r^2 + eta^2),  a_i += -sum_j m_j Pi_ij grad.
+struct ArtificialViscosity {
+  static constexpr bool uses_value = false, uses_gradient = true;
+  Neighbours nb;
+  double alpha_h = 0.0;  // alpha * h
+  template <class S>
+  void pair(const Pair& q, S& s) const {
+    const std::size_t j = q.j;
+    const double vdotx = dot(s.v - nb.velocity[j], q.dx);
+    const double rate = vdotx * q.inv_r2e;
+    s.visc = std::max(s.visc, std::abs(rate));
+    if (vdotx < 0.0) {
+      // -m_j Pi_ij = m_j alpha h cbar rate / rhobar; cbar/rhobar = (c_i + c_j)/(rho_i + rho_j)
+      const double f = nb.mass[j] * alpha_h * rate * (s.c + nb.sound_speed[j]) / (s.rho + nb.density[j]);
+      s.acc += q.grad() * f;
+    }
+  }
+};
+
+// Laminar viscosity, Morris et al. (1997) / Lo & Shao (2002) operator:
+//   a_i += sum_j m_j (mu_i + mu_j)/(rho_i rho_j) (x_ij . grad)/(r^2 + eta^2) v_ij.
+// `mu_of_material` gives mu_j by material; against walls (WallSide = true) the
+// wall takes the fluid's viscosity, mu_j = mu_i (no-slip).
+template <bool WallSide = false>
+struct LaminarViscosity {
+  static constexpr bool uses_value = false, uses_gradient = true;
+  Neighbours nb;
+  const double* mu_of_material = nullptr;
+  template <class S>
+  void pair(const Pair& q, S& s) const {
+    const std::size_t j = q.j;
+    const double mu_j = WallSide ? s.mu : mu_of_material[nb.material[j]];
+    const Vec3 vij = s.v - nb.velocity[j];
+    const double rate = dot(vij, q.dx) * q.inv_r2e;
+    s.visc = std::max(s.visc, std::abs(rate));
+    const double f = nb.mass[j] * (s.mu + mu_j) * (s.inv_rho * nb.inv_density[j]) * (q.r2 * q.dw_r) * q.inv_r2e;
+    s.acc += vij * f;
+  }
+};
+
+// Viscous force with the Müller viscosity-kernel Laplacian (rock-fluid seed
+// eq. 18): a_i += mu_i/rho_i sum_j m_j (v_j - v_i)/rho_j lap W_ij.
+// Needs a kernel with a Laplacian (the Müller set); the table's laplacian().
+struct LaplacianViscosity {
+  static constexpr bool uses_value = false, uses_gradient = false;
+  Neighbours nb;
+  const KernelTable* kernel = nullptr;
+  template <class S>
+  void pair(const Pair& q, S& s) const {
+    const std::size_t j = q.j;
+    const double f = s.mu * s.inv_rho * nb.mass[j] * nb.inv_density[j] * kernel->laplacian(q.r);
+    s.acc += (nb.velocity[j] - s.v) * f;
+  }
+};
+
+// Continuity equation (Monaghan 1992): drho_i/dt += sum_j m_j v_ij . grad.
+struct Continuity {
+  static constexpr bool uses_value = false, uses_gradient = true;
+  Neighbours nb;
+  template <class S>
+  void pair(const Pair& q, S& s) const {
+    const std::size_t j = q.j;
+    s.drho += nb.mass[j] * dot(s.v - nb.velocity[j], q.grad());
+  }
+};
+
+// delta-SPH density diffusion of Molteni & Colagrossi (2009), as in
+// DualSPHysics (DDT 1):
+//   drho_i/dt += delta h c0 sum_j 2 (rho_i - rho_j) (x_ij . grad)/(r^2 + eta^2) m_j/rho_j.
+// Fourtakas et al. (2019, Comput. Fluids 190) subtract the hydrostatic part
+// of the density difference, rho^H_i - rho^H_j = kbar g . x_ij with
+// kbar = (rho_i/c_i^2 + rho_j/c_j^2)/2 (from dp = c^2 drho = rho g dz), so
+// that a fluid at rest under gravity sees no diffusion at all.
+template <bool Hydrostatic>
+struct DensityDiffusion {
+  static constexpr bool uses_value = false, uses_gradient = true;
+  Neighbours nb;
+  double delta_h_c0 = 0.0;  // delta * h * c0
+  Vec3 gravity;
+  template <class S>
+  void pair(const Pair& q, S& s) const {
+    const std::size_t j = q.j;
+    double drho = s.rho - nb.density[j];
+    if constexpr (Hydrostatic) {
+      const double kbar = 0.5 * (s.kh + nb.rho_over_c2[j]);
+      drho -= kbar * dot(gravity, q.dx);
+    }
+    s.drho += delta_h_c0 * 2.0 * drho * (q.r2 * q.dw_r) * q.inv_r2e * nb.mass[j] * nb.inv_density[j];
+  }
+};
+
+// Summation density (rock-fluid seed eq. 12): rho_i = sum_j m_j W_ij; the
+// pass's Sums carry `rho_sum`.
+struct DensitySum {
+  static constexpr bool uses_value = true, uses_gradient = false;
+  const double* mass = nullptr;
+  template <class S>
+  void pair(const Pair& q, S& s) const {
+    s.rho_sum += mass[q.j] * q.w;
+  }
+};
+
+}  // namespace talus::sph
