@@ -86,7 +86,10 @@ class TALUS_API ParamBuilder {
   explicit ParamBuilder(ParamSpec& spec) : spec_(&spec) {}
   ParamBuilder& unit(std::string u);
   ParamBuilder& doc(std::string d);
-  ParamBuilder& optional();  // may be absent, with no default
+  // May be absent, with no default: has() is then false. Exception: an
+  // optional list (real_list, vector_list, string_list, index_lists,
+  // object_list, object_map, model_list) is always present, empty if absent.
+  ParamBuilder& optional();
   ParamBuilder& default_value(double v);
   ParamBuilder& default_value(int v);
   ParamBuilder& default_value(std::int64_t v);
