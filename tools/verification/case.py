@@ -17,4 +17,7 @@ Optional:
                   error must fall with resolution)
   gates(run) -> list of (name, passed, value-text): stability gates (no NaN, mass, ...)
   QUICK_INDEX index of the rung --quick runs (default 0)
+  KNOWN_DEVIATION  text: the accuracy tolerance is known not to be met yet (an open issue says
+                  why). Such a rung is still run, measured and reported as failing its tolerance,
+                  but does not fail the harness; its stability gates still must pass.
 """

@@ -11,15 +11,15 @@ SCENE = "share/scenes/hydrostatic_2d.json"
 LADDER = [0.04, 0.02, 0.01]
 # The gate: bottom pressure within 1 % of rho g H after settling.
 TOLERANCE = {0.04: 0.01, 0.02: 0.01, 0.01: 0.01}
-ERROR_LABEL = "|p_bottom - rho0 g (H - y)| / (rho0 g H) over the lowest particle row, after 1 s"
+ERROR_LABEL = "|p_bottom - rho0 g (H - y)| / (rho0 g H) over the lowest particle row, after 2 s"
 REFERENCE = "hydrostatics, p = rho0 g (H - y), H = 0.4 m"
 RHO0, G, H = 1000.0, 9.81, 0.4
 
 
 def configure(scene, dp, option):
     set_dp(scene, dp)
-    scene["time"]["end"] = 1.0
-    scene["outputs"] = [{"type": "hdf5", "every": 0.5, "fields": ["pressure", "velocity"]}]
+    scene["time"]["end"] = 2.0
+    scene["outputs"] = [{"type": "hdf5", "every": 1.0, "fields": ["pressure", "velocity"]}]
     return scene
 
 

