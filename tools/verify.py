@@ -51,9 +51,15 @@ def main():
     results = []
     for case in cases:
         results.extend(runner.run_case(case, args.talus, root, out, quick=args.quick, threads=args.threads))
-    report.write(results, cases, out, quick=args.quick)
-    known = [r for r in results if not r.passed and r.known]
-    failed = [r for r in results if not r.passed and not r.known]
+    # Re-running some cases updates an existing report: the other cases keep their stored results.
+    all_cases = registry.load_cases()
+    if args.case and not args.quick:
+        results = report.read_previous(out, exclude={c.NAME for c in cases}, known={c.NAME for c in all_cases}) + results
+    report.write(results, all_cases if args.case and not args.quick else cases, out, quick=args.quick)
+    ran = {c.NAME for c in cases}
+    known = [r for r in results if r.case in ran and not r.passed and r.known]
+    failed = [r for r in results if r.case in ran and not r.passed and not r.known]
+    results = [r for r in results if r.case in ran]
     for r in known:
         print(f"  KNOWN DEVIATION {r.case} {r.option_label} resolution {r.resolution:g}: {r.failure}")
     for r in failed:

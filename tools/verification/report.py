@@ -28,14 +28,36 @@ def fmt(x, spec=".3g"):
     return "—" if x is None or (isinstance(x, float) and not math.isfinite(x)) else format(x, spec)
 
 
+COLUMNS = ["case", "option", "resolution", "particles", "steps", "wall_s", "particle_steps_per_s",
+           "peak_memory_mib", "error", "tolerance", "observed_order", "passed", "known_deviation", "failure"]
+
+
+def read_previous(out, exclude, known):
+    """Results of earlier runs stored in out/results.csv, for the cases not re-run now."""
+    from verification.runner import Result
+    path = os.path.join(out, "results.csv")
+    if not os.path.exists(path):
+        return []
+    results = []
+    with open(path, newline="") as f:
+        for row in csv.DictReader(f):
+            if row["case"] in exclude or row["case"] not in known:
+                continue
+            results.append(Result(row["case"], row["option"], float(row["resolution"]), int(row["particles"]),
+                                  int(row["steps"]), float(row["wall_s"]), float(row["particle_steps_per_s"]),
+                                  float(row["peak_memory_mib"]), float(row["error"]), float(row["tolerance"]),
+                                  float(row["observed_order"]), row["passed"] == "True", row["failure"], [],
+                                  row.get("known_deviation") == "True"))
+    return results
+
+
 def write(results, cases, out, quick=False):
     with open(os.path.join(out, "results.csv"), "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["case", "option", "resolution", "particles", "steps", "wall_s", "particle_steps_per_s",
-                    "peak_memory_mib", "error", "tolerance", "observed_order", "passed", "failure"])
+        w.writerow(COLUMNS)
         for r in results:
             w.writerow([r.case, r.option_label, r.resolution, r.particles, r.steps, r.wall, r.rate, r.memory,
-                        r.error, r.tolerance, r.order, r.passed, r.failure])
+                        r.error, r.tolerance, r.order, r.passed, r.known, r.failure])
 
     by_case = defaultdict(list)
     for r in results:
