@@ -228,7 +228,7 @@ void DynamicParticles::interact(World& world, const sph::FluidView& fluid, const
     s.inv_rho = 1.0 / s.rho;
     s.p = fluid.pressure[i];
     s.c = fluid.sound_speed[i];
-    s.mu = mu[fluid.material[i]];
+    s.mu = fluid.viscosity.empty() ? mu[fluid.material[i]] : fluid.viscosity[i];  // mu_eff when non-Newtonian
     return s;
   };
   auto finish = [&](Index i, const sph::FluidSums& s) {

@@ -17,6 +17,9 @@ inline const FieldInfo field_sound_speed{"sound_speed", FieldType::scalar, "m/s"
 inline const FieldInfo field_acceleration{"acceleration", FieldType::vector, "m/s^2", false, false};
 inline const FieldInfo field_density_rate{"density_rate", FieldType::scalar, "kg/m^3/s", false, false};
 inline const FieldInfo field_visc_rate{"visc_rate", FieldType::scalar, "1/s", false, false};
+// Three-pass non-Newtonian / turbulent viscosity (only registered when used).
+inline const FieldInfo field_shear_rate{"shear_rate", FieldType::scalar, "1/s", true, false};
+inline const FieldInfo field_mu_eff{"mu_eff", FieldType::scalar, "Pa s", true, false};
 // Two-stage integrators: the state at t^n, kept within one step only.
 inline const FieldInfo field_position_n{"position_n", FieldType::vector, "m", false, false};
 inline const FieldInfo field_velocity_n{"velocity_n", FieldType::vector, "m/s", false, false};

@@ -36,7 +36,7 @@ std::uint64_t run_force_pass(const PassContext& ctx, const Terms&... terms) {
     s.inv_rho = ctx.nb.inv_density[i];
     s.p = f.p[i];
     s.c = f.c[i];
-    s.mu = mu[f.mat[i]];
+    s.mu = mu ? mu[f.mat[i]] : ctx.nb.viscosity[i];
     s.kh = ctx.nb.rho_over_c2[i];
     return s;
   };
@@ -67,9 +67,9 @@ std::uint64_t with_density_terms(const PassContext& ctx, DensityMode density, Di
 
 }  // namespace
 
-std::uint64_t WcsphStage::fluid_pass(World& world) {
+// Per-particle reciprocals once per evaluation instead of divisions per pair.
+void WcsphStage::refresh_reciprocals(World& world) {
   FluidFields f(world.fluid);
-  // Per-particle reciprocals once per evaluation instead of divisions per pair.
   const std::size_t n = f.rho.size();
   inv_rho_.resize(n);
   rho_over_c2_.resize(n);
@@ -78,12 +78,26 @@ std::uint64_t WcsphStage::fluid_pass(World& world) {
     inv_rho_[i] = 1.0 / f.rho[i];
     rho_over_c2_[i] = f.rho[i] / (f.c[i] * f.c[i]);
   }
+}
+
+std::uint64_t WcsphStage::fluid_pass(World& world) {
+  FluidFields f(world.fluid);
   sph::Neighbours nb = f.neighbours();
   nb.inv_density = inv_rho_.data();
   nb.rho_over_c2 = rho_over_c2_.data();
   const PassContext ctx{world, f, cells_, material_mu_.data(), world.gravity, nb};
   const sph::PressureForce pressure{nb};
   const double delta_h_c0 = delta_ * h_ * c0_max_;
+  if (per_particle_viscosity_) {
+    // Pass 3: the laminar force with mu_eff of both particles; start() reads mu_eff[i].
+    nb.viscosity = world.fluid.scalar("mu_eff").data();
+    const PassContext pctx{world, f, cells_, nullptr, world.gravity, nb};
+    if (viscosity_mean_ == sph::ViscosityMean::harmonic)
+      return with_density_terms(pctx, density_, diffusion_, delta_h_c0, pressure,
+                                sph::LaminarViscosityField<sph::ViscosityMean::harmonic>{nb});
+    return with_density_terms(pctx, density_, diffusion_, delta_h_c0, pressure,
+                              sph::LaminarViscosityField<sph::ViscosityMean::arithmetic>{nb});
+  }
   switch (viscosity_) {
     case sph::ViscosityModel::artificial:
       return with_density_terms(ctx, density_, diffusion_, delta_h_c0, pressure,
@@ -127,8 +141,14 @@ void WcsphStage::compute_rates(World& world) {
     density_summation(world);
     update_pressure(world);
   }
+  refresh_reciprocals(world);
+  if (per_particle_viscosity_) {
+    pairs_total_ += strain_rate_pass(world);
+    apparent_viscosity_pass(world);
+  }
   pairs_total_ += fluid_pass(world);
-  const sph::FluidView view{&cells_, f.x, f.v, f.rho, f.p, f.c, f.m, f.mat};
+  sph::FluidView view{&cells_, f.x, f.v, f.rho, f.p, f.c, f.m, f.mat};
+  if (per_particle_viscosity_) view.viscosity = world.fluid.scalar("mu_eff");
   const sph::FluidRates rates{f.a, f.drho, f.visc};
   for (sph::SphBoundary* wall : walls_) {
     wall->interact(world, view, rates);

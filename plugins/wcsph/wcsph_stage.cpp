@@ -34,6 +34,15 @@ ParamSet WcsphStage::describe() {
       .default_value("fourtakas")
       .doc("delta-SPH density diffusion (continuity only): Molteni-Colagrossi 2009 or Fourtakas et al. 2019");
   p.real("delta").min(0.0).default_value(0.1).doc("density diffusion coefficient delta");
+  p.choice("turbulence", {"none", "smagorinsky"})
+      .default_value("none")
+      .doc("laminar only, or the Smagorinsky (SPS) eddy viscosity rho (Cs dp)^2 |S| added to the laminar one");
+  p.real("smagorinsky_cs").greater_than(0.0).max(1.0).default_value(0.12)
+      .doc("Smagorinsky constant Cs (DualSPHysics/Dalrymple & Rogers 2006: 0.12)");
+  p.choice("viscosity_mean", {"arithmetic", "harmonic"})
+      .default_value("arithmetic")
+      .doc("pair viscosity from mu_eff of both particles (non-Newtonian/turbulent): arithmetic mu_i + mu_j "
+           "(Morris 1997) or harmonic 4 mu_i mu_j/(mu_i + mu_j) (Cleary 1998; for viscosity jumps)");
   return p;
 }
 
@@ -67,6 +76,11 @@ WcsphStage::WcsphStage(const ParamValues& v)
                                   {"molteni", Diffusion::molteni},
                                   {"fourtakas", Diffusion::fourtakas}})),
       delta_(v.real("delta")),
+      smagorinsky_(v.string("turbulence") == "smagorinsky"),
+      smagorinsky_cs_(v.real("smagorinsky_cs")),
+      viscosity_mean_(pick<sph::ViscosityMean>(v, "viscosity_mean",
+                                               {{"arithmetic", sph::ViscosityMean::arithmetic},
+                                                {"harmonic", sph::ViscosityMean::harmonic}})),
       params_(v) {}
 
 void WcsphStage::setup(World& world) {
@@ -97,24 +111,45 @@ void WcsphStage::setup(World& world) {
     used[m] = 1;
   }
   fluid_materials_.clear();
+  rheology_materials_.clear();
   c0_max_ = 0.0;
   nu_max_ = 0.0;
   for (std::size_t m = 0; m < nm; ++m) {
     const Material& mat = world.materials[m];
     material_rho0_[m] = mat.density;
-    if (mat.rheology && mat.rheology->is_newtonian()) material_mu_[m] = mat.rheology->reference_viscosity();
+    // Non-Newtonian materials: the reference viscosity stands for mu_eff where
+    // a per-particle value is not available (walls that ignore FluidView::viscosity).
+    if (mat.rheology) material_mu_[m] = mat.rheology->reference_viscosity();
     if (!used[m]) continue;
     if (!mat.eos)
       mat.params.fail("eos", "material '" + mat.name + "' is used by fluid particles but has no equation of state");
-    if (viscosity_ != sph::ViscosityModel::artificial && !(mat.rheology && mat.rheology->is_newtonian()))
-      mat.params.fail("rheology", "viscosity '" + params_.string("viscosity") + "' of stage wcsph needs a Newtonian "
-                                  "rheology for material '" + mat.name + "'; allowed: {\"type\": \"newtonian\", "
-                                  "\"viscosity\": ...}");
+    const bool newtonian = mat.rheology && mat.rheology->is_newtonian();
+    if (viscosity_ == sph::ViscosityModel::laplacian && !newtonian)
+      mat.params.fail("rheology", "viscosity 'laplacian' of stage wcsph needs a Newtonian rheology for material '" +
+                                      mat.name + "'; allowed: {\"type\": \"newtonian\", \"viscosity\": ...}, or "
+                                      "viscosity 'laminar' for non-Newtonian rheologies");
+    if (viscosity_ == sph::ViscosityModel::laminar && !newtonian) {
+      if (!mat.rheology || !mat.rheology->has_apparent_viscosity())
+        mat.params.fail("rheology", "viscosity 'laminar' of stage wcsph needs a rheology with an apparent viscosity "
+                                    "for material '" + mat.name + "'; allowed: newtonian, bingham, hbp, power_law, "
+                                    "herschel_bulkley");
+      rheology_materials_.push_back(static_cast<int>(m));
+    }
     fluid_materials_.push_back(static_cast<int>(m));
     c0_max_ = std::max(c0_max_, mat.eos->reference_sound_speed());
     if (viscosity_ != sph::ViscosityModel::artificial && mat.density > 0.0)
       nu_max_ = std::max(nu_max_, material_mu_[m] / mat.density);
   }
+
+  // Three-pass viscosity only where something makes mu_eff vary per particle.
+  if (smagorinsky_ && viscosity_ != sph::ViscosityModel::laminar)
+    params_.fail("turbulence", "'smagorinsky' adds to the laminar viscosity; needs \"viscosity\": \"laminar\"");
+  per_particle_viscosity_ = viscosity_ == sph::ViscosityModel::laminar && (smagorinsky_ || !rheology_materials_.empty());
+  if (per_particle_viscosity_) {
+    s.require(field_shear_rate);
+    s.require(field_mu_eff);
+  }
+  nu_field_max_ = 0.0;
 
   // Boundary models of walls (and of blocks, for fluid-block coupling): each
   // must be an SPH boundary pass; one pass per model instance.
@@ -140,7 +175,7 @@ void WcsphStage::setup(World& world) {
   cells_.configure(world.dim, lo, hi, radius, world.periodic);
 
   settings_ = sph::FluidSettings{&world.kernel, viscosity_, alpha_, eta2_, material_mu_,
-                                 density_ == DensityMode::summation, lo, hi};
+                                 density_ == DensityMode::summation, lo, hi, per_particle_viscosity_};
   world.refresh_material_index();
   update_pressure(world);
   cells_.build(world.fluid.position());
@@ -176,7 +211,8 @@ double WcsphStage::stable_time_step(const World& world) {
   if (a_max > 0.0) dt = std::min(dt, std::sqrt(h_ / a_max));
   c_max = std::max(c_max, c0_max_);
   dt = std::min(dt, h_ / (c_max + h_ * visc_max));
-  if (nu_max_ > 0.0) dt = std::min(dt, h_ * h_ / nu_max_);
+  const double nu_max = per_particle_viscosity_ ? nu_field_max_ : nu_max_;  // max mu_eff/rho with three passes
+  if (nu_max > 0.0) dt = std::min(dt, h_ * h_ / nu_max);
   dt *= courant_;
   for (const sph::SphBoundary* wall : walls_) dt = std::min(dt, wall->stable_time_step(world));
   return dt;
@@ -229,8 +265,24 @@ StagePlan WcsphStage::plan(const World& world) const {
     if (diffusion_ == Diffusion::molteni) force += " + density diffusion (Molteni)";
     if (diffusion_ == Diffusion::fourtakas) force += " + density diffusion (Fourtakas)";
   }
+  if (per_particle_viscosity_) {
+    visc = viscosity_mean_ == sph::ViscosityMean::harmonic ? "laminar viscosity (Morris, mu_eff, harmonic mean)"
+                                                          : "laminar viscosity (Morris, mu_eff, arithmetic mean)";
+    force = std::string("fluid-fluid pass: pressure + ") + visc;
+    if (density_ == DensityMode::continuity) {
+      force += " + continuity";
+      if (diffusion_ == Diffusion::molteni) force += " + density diffusion (Molteni)";
+      if (diffusion_ == Diffusion::fourtakas) force += " + density diffusion (Fourtakas)";
+    }
+  }
   if (density_ == DensityMode::summation) plan.passes.push_back("fluid-fluid pass: summation density");
   plan.passes.push_back("EOS: one batch call per material");
+  if (per_particle_viscosity_) {
+    plan.passes.push_back("fluid-fluid pass: velocity gradient (Bonet-Lok corrected) -> shear_rate");
+    std::string batch = "rheology: one apparent_viscosity batch call per non-Newtonian material -> mu_eff";
+    if (smagorinsky_) batch += " + Smagorinsky eddy viscosity";
+    plan.passes.push_back(batch);
+  }
   plan.passes.push_back(force);
   for (const sph::SphBoundary* wall : walls_) wall->describe_passes(plan);
   const char* integ = integrator_ == Integrator::symplectic            ? "symplectic (2 evaluations per step)"
@@ -240,6 +292,10 @@ StagePlan WcsphStage::plan(const World& world) const {
   plan.notes.push_back(std::string("integrator: ") + integ);
   plan.reads = {"position", "velocity", "density", "mass", "material"};
   plan.writes = {"position", "velocity", "density", "pressure", "sound_speed", "acceleration", "density_rate"};
+  if (per_particle_viscosity_) {
+    plan.writes.push_back("shear_rate");
+    plan.writes.push_back("mu_eff");
+  }
   (void)world;
   return plan;
 }

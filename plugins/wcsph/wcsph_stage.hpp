@@ -22,6 +22,7 @@
 
 #include "talus/sph/neighbour_grid.hpp"
 #include "talus/sph/boundary_pass.hpp"
+#include "talus/sph/fluid_terms.hpp"
 #include "talus/stage.hpp"
 
 namespace talus::wcsph {
@@ -52,6 +53,12 @@ class WcsphStage final : public Stage {
 
  private:
   void update_pressure(World& world);
+  // Three-pass non-Newtonian viscosity (DESIGN.md), only when per_particle_viscosity_:
+  // pass 1 shear rate, pass 2 mu_eff (one rheology batch call per material, plus
+  // the Smagorinsky eddy viscosity); pass 3 is the force pass reading mu_eff.
+  std::uint64_t strain_rate_pass(World& world);
+  void apparent_viscosity_pass(World& world);
+  void refresh_reciprocals(World& world);
   std::uint64_t fluid_pass(World& world);
   void density_summation(World& world);
   bool rates_current(const World& world) const;
@@ -68,6 +75,9 @@ class WcsphStage final : public Stage {
   DensityMode density_;
   Diffusion diffusion_;
   double delta_;
+  bool smagorinsky_;
+  double smagorinsky_cs_;
+  sph::ViscosityMean viscosity_mean_;
   ParamValues params_;
 
   // Set up once.
@@ -75,6 +85,9 @@ class WcsphStage final : public Stage {
   std::vector<double> material_mu_;    // Pa s, per material
   std::vector<double> material_rho0_;  // kg/m^3, per material
   std::vector<int> fluid_materials_;   // materials with fluid particles and an EOS
+  std::vector<int> rheology_materials_;  // fluid materials whose mu_eff comes from a batch call (non-Newtonian)
+  bool per_particle_viscosity_ = false;  // mu_eff field and the three passes in use
+  double nu_field_max_ = 0.0;            // max mu_eff/rho of the last evaluation, 1/(m^2/s)
   std::vector<sph::SphBoundary*> walls_;
   sph::FluidSettings settings_;
   sph::NeighbourGrid cells_;

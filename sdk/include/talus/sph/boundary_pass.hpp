@@ -45,6 +45,10 @@ struct FluidSettings {
   std::vector<double> material_mu;      // dynamic viscosity per material, Pa s (laminar)
   bool summation_density = false;
   Vec3 lo, hi;                          // bounds the fluid cell list covers
+  // True when FluidView::viscosity carries mu_eff per particle (non-Newtonian
+  // rheology or eddy viscosity); material_mu then holds each material's
+  // reference viscosity only.
+  bool per_particle_viscosity = false;
 };
 
 // Read-only view of the fluid for one pass; `cells` is the fluid's cell list,
@@ -54,6 +58,11 @@ struct FluidView {
   std::span<const Vec3> position, velocity;
   std::span<const double> density, pressure, sound_speed, mass;
   std::span<const std::int32_t> material;
+  // Apparent viscosity mu_eff per fluid particle (Pa s) when the stage runs the
+  // three-pass non-Newtonian / turbulent viscosity; empty otherwise (then
+  // FluidSettings::material_mu holds). A wall's laminar term should then use
+  // mu_eff[i] for the fluid particle i (no-slip: mu_wall = mu_i).
+  std::span<const double> viscosity;
 };
 
 // The fluid's rates; a boundary adds to them (never overwrites).

@@ -26,6 +26,7 @@ struct Neighbours {
   const std::int32_t* material = nullptr;
   const double* inv_density = nullptr;  // 1/rho, refreshed with the density (saves divisions per pair)
   const double* rho_over_c2 = nullptr;  // rho/c^2, for the Fourtakas diffusion only
+  const double* viscosity = nullptr;    // mu_eff per particle, Pa s (non-Newtonian / turbulent passes only)
 };
 
 // What a fluid particle i carries through a force pass, and what it sums.
@@ -96,6 +97,109 @@ struct LaminarViscosity {
     s.acc += vij * f;
   }
 };
+
+// How a pair's viscosity is formed from mu_eff of both particles.
+//   arithmetic: mu_i + mu_j (Morris et al. 1997, J. Comput. Phys. 136, eq. 8)
+//   harmonic:   4 mu_i mu_j / (mu_i + mu_j) (Cleary 1998, Appl. Math. Model. 22;
+//               Shao & Lo 2003): continuous shear stress across a viscosity jump,
+//               the better choice at a water-sediment interface.
+enum class ViscosityMean { arithmetic, harmonic };
+
+// Laminar viscosity of the three-pass non-Newtonian scheme (DESIGN.md): the
+// Morris/Lo-Shao operator of LaminarViscosity with the per-particle apparent
+// viscosity mu_eff (pass 2) of both particles; Sums carry mu = mu_eff[i].
+template <ViscosityMean Mean>
+struct LaminarViscosityField {
+  static constexpr bool uses_value = false, uses_gradient = true;
+  Neighbours nb;  // nb.viscosity = mu_eff
+  template <class S>
+  void pair(const Pair& q, S& s) const {
+    const std::size_t j = q.j;
+    const double mu_j = nb.viscosity[j];
+    double mu_pair;
+    if constexpr (Mean == ViscosityMean::arithmetic)
+      mu_pair = s.mu + mu_j;
+    else
+      mu_pair = s.mu + mu_j > 0.0 ? 4.0 * s.mu * mu_j / (s.mu + mu_j) : 0.0;
+    const Vec3 vij = s.v - nb.velocity[j];
+    const double rate = dot(vij, q.dx) * q.inv_r2e;
+    s.visc = std::max(s.visc, std::abs(rate));
+    const double f = nb.mass[j] * mu_pair * (s.inv_rho * nb.inv_density[j]) * (q.r2 * q.dw_r) * q.inv_r2e;
+    s.acc += vij * f;
+  }
+};
+
+// Pass 1 of the three-pass scheme: the velocity gradient with the kernel
+// gradient correction of Bonet & Lok (1999, CMAME 180),
+//   G_ab = sum_j V_j (v_j - v_i)_a dW_b,  L_ab = sum_j V_j (x_j - x_i)_a dW_b,
+//   grad v = G L^-1   (exact for linear velocity fields, also in a truncated
+//   support such as next to a wall without wall particles), V_j = m_j / rho_j.
+// Sums carry `v` (v_i), `g[3][3]` and `l[3][3]`.
+struct VelocityGradient {
+  static constexpr bool uses_value = false, uses_gradient = true;
+  Neighbours nb;
+  template <class S>
+  void pair(const Pair& q, S& s) const {
+    const std::size_t j = q.j;
+    const double vol = nb.mass[j] * nb.inv_density[j];
+    const Vec3 dv = (nb.velocity[j] - s.v) * vol;
+    const Vec3 dxj = q.dx * (-vol);  // V_j (x_j - x_i)
+    const Vec3 gw = q.grad();
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) {
+        s.g[a][b] += dv[a] * gw[b];
+        s.l[a][b] += dxj[a] * gw[b];
+      }
+  }
+};
+
+// |D| = sqrt(2 D':D') from the sums of VelocityGradient: D the symmetric part
+// of grad v, D' its deviator (the coastline seed's strain rate, §2.3.2). The
+// correction L^-1 is used where L is well conditioned (det > 0.1: in the bulk
+// and next to walls); at a thin free surface the raw gradient is kept.
+inline double shear_rate_from_gradient(const double g[3][3], const double l[3][3], int dim) {
+  double a[3][3] = {};
+  double det = 0.0, inv[3][3] = {};
+  if (dim == 2) {
+    det = l[0][0] * l[1][1] - l[0][1] * l[1][0];
+    if (det > 0.1) {
+      inv[0][0] = l[1][1] / det;
+      inv[0][1] = -l[0][1] / det;
+      inv[1][0] = -l[1][0] / det;
+      inv[1][1] = l[0][0] / det;
+    }
+  } else {
+    det = l[0][0] * (l[1][1] * l[2][2] - l[1][2] * l[2][1]) - l[0][1] * (l[1][0] * l[2][2] - l[1][2] * l[2][0]) +
+          l[0][2] * (l[1][0] * l[2][1] - l[1][1] * l[2][0]);
+    if (det > 0.1) {
+      inv[0][0] = (l[1][1] * l[2][2] - l[1][2] * l[2][1]) / det;
+      inv[0][1] = (l[0][2] * l[2][1] - l[0][1] * l[2][2]) / det;
+      inv[0][2] = (l[0][1] * l[1][2] - l[0][2] * l[1][1]) / det;
+      inv[1][0] = (l[1][2] * l[2][0] - l[1][0] * l[2][2]) / det;
+      inv[1][1] = (l[0][0] * l[2][2] - l[0][2] * l[2][0]) / det;
+      inv[1][2] = (l[0][2] * l[1][0] - l[0][0] * l[1][2]) / det;
+      inv[2][0] = (l[1][0] * l[2][1] - l[1][1] * l[2][0]) / det;
+      inv[2][1] = (l[0][1] * l[2][0] - l[0][0] * l[2][1]) / det;
+      inv[2][2] = (l[0][0] * l[1][1] - l[0][1] * l[1][0]) / det;
+    }
+  }
+  if (det > 0.1) {
+    for (int r = 0; r < dim; ++r)
+      for (int c = 0; c < dim; ++c)
+        for (int k = 0; k < dim; ++k) a[r][c] += g[r][k] * inv[k][c];
+  } else {
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) a[r][c] = g[r][c];  // L ~ I in a full support: the raw gradient
+  }
+  const double tr = (a[0][0] + a[1][1] + a[2][2]) / 3.0;
+  double dd = 0.0;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      const double d = 0.5 * (a[r][c] + a[c][r]) - (r == c ? tr : 0.0);
+      dd += d * d;
+    }
+  return std::sqrt(2.0 * dd);
+}
 
 // Viscous force with the Müller viscosity-kernel Laplacian (rock-fluid seed
 // eq. 18): a_i += mu_i/rho_i sum_j m_j (v_j - v_i)/rho_j lap W_ij.

@@ -1,0 +1,47 @@
+#include "hbp.hpp"
+
+namespace talus::rheology {
+
+ParamSet Hbp::describe() {
+  ParamSet p{"hbp", "Herschel-Bulkley-Papanastasiou viscoplastic sediment (coastline seed §2.3.2)"};
+  p.choice("yield", {"constant", "mohr_coulomb", "drucker_prager"})
+      .default_value("constant")
+      .doc("yield stress: constant yield_stress, or c + p tan(phi) (Mohr-Coulomb) or the matched Drucker-Prager cone");
+  p.real("yield_stress").unit("Pa").min(0.0).default_value(0.0).doc("constant yield stress tau_y (yield: constant)");
+  p.real("cohesion").unit("Pa").min(0.0).default_value(0.0).doc("cohesion c (yield: mohr_coulomb, drucker_prager)");
+  p.real("friction_angle").unit("deg").min(0.0).max(89.0).default_value(0.0)
+      .doc("internal friction angle phi (yield: mohr_coulomb, drucker_prager)");
+  p.real("regularisation").unit("s").min(0.0).default_value(100.0).doc("Papanastasiou exponent m (seed: 100)");
+  p.real("power_index").min(0.05).max(3.0).default_value(1.0).doc("power-law index n (n < 1 shear thinning)");
+  p.real("consistency").unit("Pa s^n").greater_than(0.0).doc("consistency K (n = 1: the plastic viscosity)");
+  p.real("min_shear_rate").unit("1/s").greater_than(0.0).default_value(1e-6)
+      .doc("lower bound of the shear rate in K gd^(n-1) (bounds it at rest for n < 1)");
+  return p;
+}
+
+namespace {
+YieldModel yield_model(const std::string& s) {
+  if (s == "mohr_coulomb") return YieldModel::mohr_coulomb;
+  if (s == "drucker_prager") return YieldModel::drucker_prager;
+  return YieldModel::constant;
+}
+}  // namespace
+
+Hbp::Hbp(const ParamValues& v)
+    : yield_(YieldStress::make(yield_model(v.string("yield")), v.real("yield_stress"), v.real("cohesion"),
+                               v.real("friction_angle"))),
+      regularisation_(v.real("regularisation")),
+      power_index_(v.real("power_index")),
+      consistency_(v.real("consistency")),
+      min_shear_rate_(v.real("min_shear_rate")) {}
+
+void Hbp::apparent_viscosity(std::span<const Index> idx, const ViscosityInputs& in, double* mu) const {
+  const double m = regularisation_, n = power_index_, k = consistency_, gmin = min_shear_rate_;
+  const YieldStress y = yield_;
+  for (const Index i : idx) {
+    const double gd = in.shear_rate[i];
+    mu[i] = y.at(in.pressure[i]) * papanastasiou_factor(m, gd) + power_law_viscosity(k, n, gd, gmin);
+  }
+}
+
+}  // namespace talus::rheology
