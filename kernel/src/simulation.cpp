@@ -255,9 +255,9 @@ void Simulation::print_plan(std::ostream& out) const {
     out << "  body     " << b.name << "  " << to_string(b.kind) << "  shape " << b.params.alternative("shape");
     if (b.kind == BodyKind::fluid)
       out << "  " << std::count(fluid_body.begin(), fluid_body.end(), static_cast<std::int32_t>(bi)) << " particles";
-    if (b.kind == BodyKind::wall)
+    if (b.params.has("boundary"))
       out << "  boundary " << b.params.model_name("boundary") << "  "
-          << std::count(wall_body.begin(), wall_body.end(), static_cast<std::int32_t>(bi)) << " wall particles";
+          << std::count(wall_body.begin(), wall_body.end(), static_cast<std::int32_t>(bi)) << " boundary particles";
     if (b.kind == BodyKind::block && b.params.has("contact")) out << "  contact " << b.params.model_name("contact");
     if (b.params.has("motion")) out << "  motion " << b.params.alternative("motion");
     out << "\n";

@@ -1,0 +1,366 @@
+#include "block_particles.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <omp.h>
+
+#include "block_pass.hpp"
+#include "talus/blocks.hpp"
+#include "talus/dda/polyhedron.hpp"
+#include "talus/eos.hpp"
+#include "talus/error.hpp"
+#include "talus/sph/fluid_terms.hpp"
+#include "talus/sph/pair_loop.hpp"
+#include "talus/world.hpp"
+
+namespace talus::coupling {
+
+namespace {
+
+const FieldInfo wall_velocity{"velocity", FieldType::vector, "m/s", true, true};
+const FieldInfo wall_density{"density", FieldType::scalar, "kg/m^3", true, true};
+const FieldInfo wall_pressure{"pressure", FieldType::scalar, "Pa", true, false};
+const FieldInfo wall_mass{"mass", FieldType::scalar, "kg", false, true};
+const FieldInfo wall_sound_speed{"sound_speed", FieldType::scalar, "m/s", false, false};
+const FieldInfo wall_density_rate{"density_rate", FieldType::scalar, "kg/m^3/s", false, false};
+const FieldInfo wall_density_n{"density_n", FieldType::scalar, "kg/m^3", false, false};
+const FieldInfo block_offset{"block_offset", FieldType::vector, "m", false, true};
+
+// Body-frame lattice points of spacing dp inside the polyhedron, at most
+// `layers` dp deep below one of the faces in `covered` (empty: all faces),
+// centred on the bounding box so that faces a multiple of dp apart get their
+// first layer exactly dp/2 inside.
+std::vector<Vec3> shell_points(const Polyhedron& poly, double dp, int layers, const std::vector<char>& covered) {
+  Vec3 lo = poly.vertices[0], hi = lo;
+  for (const Vec3& v : poly.vertices)
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], v[a]);
+      hi[a] = std::max(hi[a], v[a]);
+    }
+  int n[3];
+  Vec3 start;
+  for (int a = 0; a < 3; ++a) {
+    const double extent = hi[a] - lo[a];
+    n[a] = std::max(1, static_cast<int>(std::lround(extent / dp)));
+    start[a] = lo[a] + 0.5 * (extent - (n[a] - 1) * dp);
+  }
+  const double depth = layers * dp;
+  std::vector<Vec3> out;
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i) {
+        const Vec3 p{start.x + i * dp, start.y + j * dp, start.z + k * dp};
+        const double d = dda::plane_distance(poly, p);
+        if (!(d < -1e-9 * dp)) continue;  // outside or on the surface
+        double below = -1e300;            // depth below the nearest covered face (negative)
+        for (std::size_t f = 0; f < poly.normals.size(); ++f)
+          if (covered.empty() || covered[f]) below = std::max(below, dot(poly.normals[f], p) - poly.offsets[f]);
+        if (below > -depth) out.push_back(p);
+      }
+  return out;
+}
+
+struct ExtrapolationSums {
+  double wsum = 0.0, psum = 0.0;
+};
+// Shepard-weighted hydrostatic extrapolation of the fluid pressure to a block
+// particle b (Adami et al. 2012, eq. 27): sum W_bf (p_f + rho_f g . (x_b - x_f)).
+struct PressureExtrapolation {
+  static constexpr bool uses_value = true, uses_gradient = false;
+  const double* p;
+  const double* rho;
+  Vec3 g;
+  void pair(const sph::Pair& q, ExtrapolationSums& s) const {
+    s.wsum += q.w;
+    s.psum += q.w * (p[q.j] + rho[q.j] * dot(g, q.dx));
+  }
+};
+
+struct DensitySums {
+  double rho_sum = 0.0;
+};
+
+}  // namespace
+
+ParamSet BlockParticles::describe() {
+  ParamSet p{"block_particles",
+             "boundary particles moving with a DDA block (DBC, as DualSPHysics floating bodies): the block pushes "
+             "the fluid and the fluid's pressure and viscous forces act back on the block"};
+  p.real("dp").unit("m").greater_than(0.0).optional().doc("spacing of the block's particles (default: the fluid's dp)");
+  p.integer("layers").min(1).optional().doc("layers of particles inside the faces (default: enough to cover the "
+                                            "kernel support)");
+  p.string("material").optional().doc("fluid material whose reference density and EOS the block's particles use "
+                                      "(default: the scene's only fluid material)");
+  p.vector_list("faces").optional().doc("outward normals (scene frame, at t = 0) of the only faces that get "
+                                        "particles, e.g. the top of a fixed slope (default: every face)");
+  return p;
+}
+
+BlockParticles::BlockParticles(const ParamValues& v) {
+  if (v.has("dp")) dp_param_ = v.real("dp");
+  if (v.has("layers")) layers_param_ = static_cast<int>(v.integer("layers"));
+  if (v.has("material")) material_name_ = v.string("material");
+  if (v.has("faces")) {
+    faces_ = v.vectors("faces");
+    for (Vec3& n : faces_) {
+      if (!(norm(n) > 0.0)) v.fail("faces", "a face normal must not be zero");
+      n = n / norm(n);
+    }
+  }
+}
+
+void BlockParticles::setup(World& world, std::span<const int> bodies) {
+  // Geometry waits for bind(): world.blocks exists only after the dda stage's setup.
+  for (int bi : bodies) {
+    bodies_.push_back(bi);
+    names_.push_back(world.bodies[bi].name);
+  }
+}
+
+void BlockParticles::bind(World& world, const sph::FluidSettings& settings) {
+  settings_ = settings;
+  blocks_ = find_blocks(world, bodies_, "block_particles");
+  material_ = coupling_material(world, bodies_.front(), "block_particles", material_name_);
+  const Material& mat = world.materials[material_];
+  if (!mat.eos)
+    world.bodies[bodies_.front()].params.fail("boundary", "block_particles: material '" + mat.name +
+                                                              "' has no \"eos\" for the block particles' pressure");
+  rho0_ = mat.density;
+  dp_ = dp_param_ > 0.0 ? dp_param_ : world.dp;
+  const double radius = settings.kernel->support_radius();
+  layers_ = layers_param_ > 0 ? layers_param_ : std::max(1, static_cast<int>(std::ceil(radius / dp_ - 1e-9)));
+
+  // Fluid the host placed inside a block at the start goes: the blocks were
+  // not there when the fluid body was filled.
+  removed_ = clear_fluid_inside(world, blocks_, 0.5 * world.dp * (1.0 - 1e-6));
+
+  ParticleStore& s = world.boundary;
+  for (const FieldInfo* f : {&wall_velocity, &wall_density, &wall_pressure, &wall_mass, &wall_sound_speed,
+                             &wall_density_rate, &wall_density_n, &block_offset})
+    s.require(*f);
+  const BlockSet& b = *world.blocks;
+  const double mass = rho0_ * dp_ * dp_ * dp_;
+  begin_.clear();
+  end_.clear();
+  all_.clear();
+  for (std::size_t k = 0; k < blocks_.size(); ++k) {
+    const Polyhedron& poly = b.shape[blocks_[k]];
+    std::vector<char> covered;
+    if (!faces_.empty()) {
+      covered.assign(poly.normals.size(), 0);
+      for (const Vec3& n : faces_) {
+        bool found = false;
+        for (std::size_t f = 0; f < poly.normals.size(); ++f)
+          if (dot(rotate(b.orientation[blocks_[k]], poly.normals[f]), n) > 1.0 - 1e-6) covered[f] = 1, found = true;
+        if (!found)
+          world.bodies[bodies_[k]].params.fail("boundary", "block_particles: block '" + names_[k] +
+                                                                "' has no face with the outward normal listed in "
+                                                                "\"faces\"");
+      }
+    }
+    const std::vector<Vec3> points = shell_points(poly, dp_, layers_, covered);
+    if (points.empty())
+      world.bodies[bodies_[k]].params.fail("shape", "block '" + names_[k] + "' holds no boundary particle at dp = " +
+                                                        std::to_string(dp_) + "; give block_particles a smaller \"dp\"");
+    const std::size_t first = s.append(points.size());
+    auto off = s.vector("block_offset");
+    auto rho = s.scalar("density");
+    auto m = s.scalar("mass");
+    auto mid = s.material();
+    auto bid = s.body();
+    for (std::size_t q = 0; q < points.size(); ++q) {
+      off[first + q] = points[q];
+      rho[first + q] = rho0_;
+      m[first + q] = mass;
+      mid[first + q] = material_;
+      bid[first + q] = bodies_[k];
+      all_.push_back(static_cast<Index>(first + q));
+    }
+    begin_.push_back(first);
+    end_.push_back(first + points.size());
+  }
+  cells_.assign(blocks_.size(), sph::NeighbourGrid{});
+  for (auto& c : cells_) c.configure(world.dim, settings.lo, settings.hi, radius, world.periodic);
+  thread_force_.assign(omp_get_max_threads(), Vec3{});
+  thread_torque_.assign(omp_get_max_threads(), Vec3{});
+  inv_rho_.assign(s.size(), 0.0);  // indexed like world.boundary (only my range is used)
+  ledger_.reset(blocks_.size());
+  place(world);
+  initial_density(world);
+  update_pressure(world);
+}
+
+// Particles at the blocks' current poses with their rigid velocities.
+void BlockParticles::place(World& world) {
+  ParticleStore& s = world.boundary;
+  const BlockSet& b = *world.blocks;
+  auto x = s.position();
+  auto v = s.vector("velocity");
+  const auto off = s.vector("block_offset");
+  for (std::size_t k = 0; k < blocks_.size(); ++k) {
+    const std::size_t i = blocks_[k];
+    const Vec3 X = b.position[i], V = b.velocity[i], w = b.angular_velocity[i];
+    const Quaternion q = b.orientation[i];
+    for (std::size_t p = begin_[k]; p < end_[k]; ++p) {
+      const Vec3 r = rotate(q, off[p]);
+      x[p] = X + r;
+      v[p] = V + cross(w, r);
+    }
+  }
+}
+
+void BlockParticles::initial_density(World& world) {
+  ParticleStore& fs = world.fluid;
+  if (fs.size() == 0) return;
+  ParticleStore& s = world.boundary;
+  const auto fx = fs.position();
+  const KernelTable& k = *settings_.kernel;
+  sph::NeighbourGrid fluid_cells;
+  fluid_cells.configure(world.dim, settings_.lo, settings_.hi, k.support_radius(), world.periodic);
+  fluid_cells.build(fx);
+  const Material& mat = world.materials[material_];
+  auto rho = s.scalar("density");
+  const std::span<const Vec3> x = s.position();
+  for (std::size_t blk = 0; blk < blocks_.size(); ++blk) {
+    const std::size_t first = begin_[blk], count = end_[blk] - begin_[blk];
+    auto start = [](Index) { return ExtrapolationSums{}; };
+    auto finish = [&](Index b, const ExtrapolationSums& sum) {
+      if (sum.wsum <= 0.0) return;
+      rho[first + b] = std::max(rho0_, mat.eos->density_at(std::max(0.0, sum.psum / sum.wsum)));
+    };
+    sph::pair_pass(count, x.subspan(first, count), fluid_cells, fx, k, sph::other_set, start, finish,
+                   PressureExtrapolation{fs.scalar("pressure").data(), fs.scalar("density").data(), world.gravity});
+  }
+}
+
+void BlockParticles::update_pressure(World& world) {
+  ParticleStore& s = world.boundary;
+  world.materials[material_].eos->pressure(all_, s.scalar("density").data(), s.scalar("pressure").data(),
+                                           s.scalar("sound_speed").data());
+}
+
+void BlockParticles::begin_step(World& world) {
+  ParticleStore& s = world.boundary;
+  auto rho = s.scalar("density");
+  auto rho_n = s.scalar("density_n");
+  for (Index p : all_) rho_n[p] = rho[p];
+  ledger_.begin_step();
+}
+
+void BlockParticles::interact(World& world, const sph::FluidView& fluid, const sph::FluidRates& rates) {
+  ParticleStore& s = world.boundary;
+  const BlockSet& b = *world.blocks;
+  const KernelTable& kernel = *settings_.kernel;
+  const std::span<const Vec3> x = s.position();
+  const auto v = s.vector("velocity");
+  const auto rho = s.scalar("density");
+  const auto p = s.scalar("pressure");
+  const auto c = s.scalar("sound_speed");
+  const auto m = s.scalar("mass");
+  const auto mat = s.material();
+  auto drho = s.scalar("density_rate");
+  const double* mu = settings_.material_mu.data();
+  const bool continuity = !settings_.summation_density;
+  // The block-side pass uses continuity only (velocity and mass of the fluid).
+  const sph::Neighbours fluid_nb{fluid.velocity.data(), fluid.density.data(), fluid.pressure.data(),
+                                 fluid.sound_speed.data(), fluid.mass.data(), fluid.material.data()};
+  std::uint64_t pairs = 0;
+  for (std::size_t k = 0; k < blocks_.size(); ++k) {
+    const std::size_t first = begin_[k], count = end_[k] - begin_[k];
+    const std::span<const Vec3> xb = x.subspan(first, count);
+    cells_[k].build(xb);
+    // Offset views so that neighbour index j of this block's cell list reads particle first + j.
+    for (std::size_t q = 0; q < count; ++q) inv_rho_[first + q] = 1.0 / rho[first + q];
+    sph::Neighbours nb{v.data() + first, rho.data() + first, p.data() + first,
+                       c.data() + first, m.data() + first, mat.data() + first};
+    nb.inv_density = inv_rho_.data() + first;
+    const BlockPassInput in{fluid, rates, cells_[k], xb, kernel, b.bounds_lo[blocks_[k]], b.bounds_hi[blocks_[k]],
+                            b.position[blocks_[k]], mu, continuity, thread_force_.data(), thread_torque_.data()};
+    const sph::PressureForce pressure{nb};
+    const sph::Continuity cont{nb};
+    switch (settings_.viscosity) {
+      case sph::ViscosityModel::artificial:
+        pairs += block_pass(in, pressure, sph::ArtificialViscosity{nb, settings_.alpha * kernel.h()},
+                            cont);
+        break;
+      case sph::ViscosityModel::laminar:
+        pairs += block_pass(in, pressure, sph::LaminarViscosity<true>{nb, mu}, cont);
+        break;
+      case sph::ViscosityModel::laplacian:
+        pairs += block_pass(in, pressure, sph::LaplacianViscosity{nb, &kernel}, cont);
+        break;
+    }
+    Vec3 force{}, torque{};
+    for (std::size_t t = 0; t < thread_force_.size(); ++t) {
+      force += thread_force_[t];
+      torque += thread_torque_[t];
+    }
+    ledger_.set(k, force, torque);
+
+    // Block side: continuity of each block particle with its fluid neighbours.
+    struct WallSums {
+      Vec3 v;
+      double drho = 0.0;
+    };
+    auto wstart = [&](Index q) { return WallSums{v[first + q], 0.0}; };
+    auto wfinish = [&](Index q, const WallSums& sum) { drho[first + q] = sum.drho; };
+    pairs += sph::pair_pass(count, xb, *fluid.cells, fluid.position, kernel, sph::other_set, wstart, wfinish,
+                            sph::Continuity{fluid_nb});
+  }
+  pairs_ = pairs;
+}
+
+void BlockParticles::add_density(const World& world, const sph::FluidView& fluid, std::span<double> rho) {
+  const ParticleStore& s = world.boundary;
+  const std::span<const Vec3> x = s.position();
+  const auto m = s.scalar("mass");
+  for (std::size_t k = 0; k < blocks_.size(); ++k) {
+    const std::size_t first = begin_[k], count = end_[k] - begin_[k];
+    sph::NeighbourGrid& cells = cells_[k];
+    cells.build(x.subspan(first, count));
+    auto start = [](Index) { return DensitySums{}; };
+    auto finish = [&](Index i, const DensitySums& sum) { rho[i] += sum.rho_sum; };
+    sph::pair_pass(fluid.position.size(), fluid.position, cells, x.subspan(first, count), *settings_.kernel,
+                   sph::other_set, start, finish, sph::DensitySum{m.data() + first});
+  }
+}
+
+void BlockParticles::advance_walls(World& world, double time, double dt) {
+  ParticleStore& s = world.boundary;
+  auto rho = s.scalar("density");
+  const auto rho_n = s.scalar("density_n");
+  const auto drho = s.scalar("density_rate");
+  const double rho0 = rho0_;
+  const std::size_t n = all_.size();
+  const Index* ids = all_.data();
+#pragma omp parallel for schedule(static)
+  for (std::size_t q = 0; q < n; ++q) {
+    const Index p = ids[q];
+    rho[p] = std::max(rho0, rho_n[p] + dt * drho[p]);  // as DBC walls: never pull the fluid
+  }
+  // The dda stage has already moved the blocks to the end of this host step.
+  place(world);
+  update_pressure(world);
+  ledger_.commit(world, blocks_, time, dt);
+}
+
+void BlockParticles::describe_passes(StagePlan& plan) const {
+  std::string names;
+  for (const auto& n : names_) names += (names.empty() ? "'" : ", '") + n + "'";
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < begin_.size(); ++k) count += end_[k] - begin_[k];
+  plan.passes.push_back("fluid-block pass (block_particles " + names +
+                        "): block pressure + viscosity + continuity on the fluid; force and torque on the block");
+  plan.passes.push_back("block-fluid pass (block_particles " + names + "): block-particle continuity, EOS, rigid "
+                        "placement");
+  if (count) {
+    char spacing[32];
+    std::snprintf(spacing, sizeof spacing, "%g", dp_);
+    plan.notes.push_back("block_particles " + names + ": " + std::to_string(count) + " particles in " +
+                         std::to_string(layers_) + " layers at dp " + spacing + " m");
+  }
+}
+
+}  // namespace talus::coupling
