@@ -61,27 +61,6 @@ int wall_material(const World& world, const Body& body) {
                                    std::to_string(fluid_materials.size()) + " fluid materials");
 }
 
-// Shepard-weighted hydrostatic extrapolation of the fluid pressure to a wall
-// particle b: sums of W_bf and W_bf (p_f + rho_f g . (x_b - x_f)).
-struct ExtrapolationSums {
-  double wsum = 0.0, psum = 0.0;
-};
-struct PressureExtrapolation {
-  static constexpr bool uses_value = true, uses_gradient = false;
-  const double* p;
-  const double* rho;
-  Vec3 g;
-  void pair(const sph::Pair& q, ExtrapolationSums& s) const {
-    // dx = x_i - x_j = x_b - x_f: the hydrostatic step from fluid particle f to wall particle b.
-    s.wsum += q.w;
-    s.psum += q.w * (p[q.j] + rho[q.j] * dot(g, q.dx));
-  }
-};
-
-struct DensitySums {
-  double rho_sum = 0.0;
-};
-
 }  // namespace
 
 ParamSet DynamicParticles::describe() {
@@ -184,15 +163,15 @@ void DynamicParticles::initial_density(World& world) {
   fluid_cells.build(fx);
   const Vec3 g = world.gravity;
   const std::span<const Vec3> wx = w.x;
-  auto start = [&](Index) { return ExtrapolationSums{}; };
-  auto finish = [&](Index i, const ExtrapolationSums& s) {
+  auto start = [&](Index) { return sph::ExtrapolationSums{}; };
+  auto finish = [&](Index i, const sph::ExtrapolationSums& s) {
     if (s.wsum <= 0.0) return;
     const Material& mat = world.materials[w.mat[i]];
     const double pb = std::max(0.0, s.psum / s.wsum);
     w.rho[i] = std::max(mat.density, mat.eos->density_at(pb));
   };
   sph::pair_pass(count_, wx, fluid_cells, fx, k, sph::other_set, start, finish,
-                 PressureExtrapolation{fp.data(), frho.data(), g});
+                 sph::PressureExtrapolation{fp.data(), frho.data(), g});
 }
 
 void DynamicParticles::update_pressure(World& world) {
@@ -270,8 +249,8 @@ void DynamicParticles::interact(World& world, const sph::FluidView& fluid, const
 void DynamicParticles::add_density(const World& world, const sph::FluidView& fluid, std::span<double> rho) {
   ParticleStore& s = const_cast<ParticleStore&>(world.boundary);
   WallFields w(s, first_, count_);
-  auto start = [](Index) { return DensitySums{}; };
-  auto finish = [&](Index i, const DensitySums& sum) { rho[i] += sum.rho_sum; };
+  auto start = [](Index) { return sph::DensitySums{}; };
+  auto finish = [&](Index i, const sph::DensitySums& sum) { rho[i] += sum.rho_sum; };
   sph::pair_pass(fluid.position.size(), fluid.position, cells_, std::span<const Vec3>(w.x), *settings_.kernel,
                  sph::other_set, start, finish, sph::DensitySum{w.m.data()});
 }

@@ -62,26 +62,6 @@ std::vector<Vec3> shell_points(const Polyhedron& poly, double dp, int layers, co
   return out;
 }
 
-struct ExtrapolationSums {
-  double wsum = 0.0, psum = 0.0;
-};
-// Shepard-weighted hydrostatic extrapolation of the fluid pressure to a block
-// particle b (Adami et al. 2012, eq. 27): sum W_bf (p_f + rho_f g . (x_b - x_f)).
-struct PressureExtrapolation {
-  static constexpr bool uses_value = true, uses_gradient = false;
-  const double* p;
-  const double* rho;
-  Vec3 g;
-  void pair(const sph::Pair& q, ExtrapolationSums& s) const {
-    s.wsum += q.w;
-    s.psum += q.w * (p[q.j] + rho[q.j] * dot(g, q.dx));
-  }
-};
-
-struct DensitySums {
-  double rho_sum = 0.0;
-};
-
 }  // namespace
 
 ParamSet BlockParticles::describe() {
@@ -225,13 +205,13 @@ void BlockParticles::initial_density(World& world) {
   const std::span<const Vec3> x = s.position();
   for (std::size_t blk = 0; blk < blocks_.size(); ++blk) {
     const std::size_t first = begin_[blk], count = end_[blk] - begin_[blk];
-    auto start = [](Index) { return ExtrapolationSums{}; };
-    auto finish = [&](Index b, const ExtrapolationSums& sum) {
+    auto start = [](Index) { return sph::ExtrapolationSums{}; };
+    auto finish = [&](Index b, const sph::ExtrapolationSums& sum) {
       if (sum.wsum <= 0.0) return;
       rho[first + b] = std::max(rho0_, mat.eos->density_at(std::max(0.0, sum.psum / sum.wsum)));
     };
     sph::pair_pass(count, x.subspan(first, count), fluid_cells, fx, k, sph::other_set, start, finish,
-                   PressureExtrapolation{fs.scalar("pressure").data(), fs.scalar("density").data(), world.gravity});
+                   sph::PressureExtrapolation{fs.scalar("pressure").data(), fs.scalar("density").data(), world.gravity});
   }
 }
 
@@ -320,8 +300,8 @@ void BlockParticles::add_density(const World& world, const sph::FluidView& fluid
     const std::size_t first = begin_[k], count = end_[k] - begin_[k];
     sph::NeighbourGrid& cells = cells_[k];
     cells.build(x.subspan(first, count));
-    auto start = [](Index) { return DensitySums{}; };
-    auto finish = [&](Index i, const DensitySums& sum) { rho[i] += sum.rho_sum; };
+    auto start = [](Index) { return sph::DensitySums{}; };
+    auto finish = [&](Index i, const sph::DensitySums& sum) { rho[i] += sum.rho_sum; };
     sph::pair_pass(fluid.position.size(), fluid.position, cells, x.subspan(first, count), *settings_.kernel,
                    sph::other_set, start, finish, sph::DensitySum{m.data() + first});
   }

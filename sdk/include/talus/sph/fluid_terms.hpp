@@ -263,4 +263,28 @@ struct DensitySum {
   }
 };
 
+// The sums of a summation-density pass (DensitySum's accumulator).
+struct DensitySums {
+  double rho_sum = 0.0;
+};
+
+// Shepard-weighted hydrostatic extrapolation of the fluid pressure to a wall
+// or block particle b (Adami et al. 2012, eq. 27):
+//   p_b = sum_f W_bf (p_f + rho_f g . (x_b - x_f)) / sum_f W_bf.
+// Run as a pass over wall particles (i = b) against the fluid (j = f).
+struct ExtrapolationSums {
+  double wsum = 0.0, psum = 0.0;
+};
+struct PressureExtrapolation {
+  static constexpr bool uses_value = true, uses_gradient = false;
+  const double* p;
+  const double* rho;
+  Vec3 g;
+  void pair(const Pair& q, ExtrapolationSums& s) const {
+    // dx = x_i - x_j = x_b - x_f: the hydrostatic step from fluid particle f to wall particle b.
+    s.wsum += q.w;
+    s.psum += q.w * (p[q.j] + rho[q.j] * dot(g, q.dx));
+  }
+};
+
 }  // namespace talus::sph
