@@ -8,11 +8,11 @@ cd "$(dirname "$0")/.."
 bash tools/setup.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > build-configure.log || { cat build-configure.log; exit 1; }
 echo "talus quickstart: building (2 cores: a few minutes the first time) ..."
-cmake --build build -j "$(nproc)" 2>&1 | grep -E "error|warning: unused|Linking CXX executable bin/talus" || true
-test -x build/bin/talus || { echo "talus quickstart: the build failed; run 'cmake --build build' to see why"; exit 1; }
+cmake --build build -j "$(nproc)" > build.log 2>&1 || { tail -40 build.log; echo "talus quickstart: the build failed (build.log)"; exit 1; }
 build/bin/talus run --out out/default
 python=/usr/bin/python3   # Debian's, with numpy/matplotlib/h5py
 [ -x "$python" ] || python=python3
-if "$python" -c "import h5py, matplotlib" 2>/dev/null && [ -f tools/preview.py ]; then
-  "$python" tools/preview.py out/default --output out/default/preview.png && echo "talus quickstart: picture in out/default/preview.png"
+if "$python" -c "import h5py, matplotlib" 2>/dev/null; then
+  "$python" tools/preview.py out/default/block_impact.h5part -o out/default/preview.png &&
+    echo "talus quickstart: picture of the last frame in out/default/preview.png"
 fi

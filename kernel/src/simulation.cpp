@@ -353,6 +353,13 @@ void Simulation::check_finite() const {
   throw RunError(msg.str());
 }
 
+std::vector<std::string> Simulation::output_files() const {
+  std::vector<std::string> files;
+  for (const auto& w : writers_)
+    for (auto& f : w.writer->files()) files.push_back(f);
+  return files;
+}
+
 std::string Simulation::last_output() const {
   std::string newest;
   for (const auto& w : writers_) {

@@ -53,6 +53,8 @@ class TALUS_API Simulation {
   int run(const RunOptions& options);
 
   World& world() { return world_; }
+  // Every file the writers have written so far.
+  std::vector<std::string> output_files() const;
   const Scene& scene() const { return scene_; }
 
   // Checkpoints (also used by tests): write the complete state; read it back

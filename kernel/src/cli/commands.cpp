@@ -173,9 +173,14 @@ int run(const Args& args) {
   options.restart = o.restart;
   options.summary_file = o.summary;
   const int code = simulation.run(options);
-  if (code == 0 && o.positional.empty() && !o.quiet)
-    std::printf("\nThis was the default scene (%s).\nPreview a frame:  python3 tools/preview.py %s\n", path.c_str(),
-                (options.output_directory.empty() ? "out/" + simulation.scene().name : options.output_directory).c_str());
+  if (code == 0 && !o.quiet) {
+    if (o.positional.empty()) std::printf("\nThis was the default scene, %s.\n", path.c_str());
+    for (const auto& file : simulation.output_files())
+      if (file.size() > 7 && file.compare(file.size() - 7, 7, ".h5part") == 0) {
+        std::printf("Picture of the last frame:  python3 tools/preview.py %s -o preview.png\n", file.c_str());
+        break;
+      }
+  }
   return code;
 }
 
