@@ -1,5 +1,6 @@
 """Markdown tables, CSV and log-log plots of error against wall time."""
 import csv
+import json
 import math
 import os
 import platform
@@ -29,7 +30,7 @@ def fmt(x, spec=".3g"):
 
 
 COLUMNS = ["case", "option", "resolution", "particles", "steps", "wall_s", "particle_steps_per_s",
-           "peak_memory_mib", "error", "tolerance", "observed_order", "passed", "known_deviation", "failure"]
+           "peak_memory_mib", "error", "tolerance", "observed_order", "passed", "known_deviation", "failure", "gates"]
 
 
 def read_previous(out, exclude, known):
@@ -43,11 +44,13 @@ def read_previous(out, exclude, known):
         for row in csv.DictReader(f):
             if row["case"] in exclude or row["case"] not in known:
                 continue
-            results.append(Result(row["case"], row["option"], float(row["resolution"]), int(row["particles"]),
-                                  int(row["steps"]), float(row["wall_s"]), float(row["particle_steps_per_s"]),
-                                  float(row["peak_memory_mib"]), float(row["error"]), float(row["tolerance"]),
-                                  float(row["observed_order"]), row["passed"] == "True", row["failure"], [],
-                                  row.get("known_deviation") == "True"))
+            results.append(Result(case=row["case"], option_label=row["option"], resolution=float(row["resolution"]),
+                                  particles=int(row["particles"]), steps=int(row["steps"]), wall=float(row["wall_s"]),
+                                  rate=float(row["particle_steps_per_s"]), memory=float(row["peak_memory_mib"]),
+                                  error=float(row["error"]), tolerance=float(row["tolerance"]),
+                                  order=float(row["observed_order"]), passed=row["passed"] == "True",
+                                  failure=row["failure"], known=row.get("known_deviation") == "True",
+                                  gates=[tuple(g) for g in json.loads(row.get("gates") or "[]")]))
     return results
 
 
@@ -57,7 +60,7 @@ def write(results, cases, out, quick=False):
         w.writerow(COLUMNS)
         for r in results:
             w.writerow([r.case, r.option_label, r.resolution, r.particles, r.steps, r.wall, r.rate, r.memory,
-                        r.error, r.tolerance, r.order, r.passed, r.known, r.failure])
+                        r.error, r.tolerance, r.order, r.passed, r.known, r.failure, json.dumps(r.gates)])
 
     by_case = defaultdict(list)
     for r in results:

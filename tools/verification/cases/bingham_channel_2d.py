@@ -8,14 +8,16 @@ TITLE = "Bingham channel flow, 2D, three-pass non-Newtonian viscosity, dynamic b
 SCENE = "share/scenes/bingham_channel_2d.json"
 # L/10, L/15, L/20. The plug's high regularised viscosity bounds dt by h^2 mu/rho: L/40 costs
 # ~20 min on a 2-core machine, so the ladder stops at L/20, where the issue's 3 % applies.
+# The issue sets 3 % (at L/20 here); the coarser rungs, with 10 and 15 particles across the channel,
+# cannot resolve the plug and carry no tolerance: they must only show the error falling.
 LADDER = [1e-4, 6.6667e-5, 5e-5]
-TOLERANCE = {1e-4: 0.15, 6.6667e-5: 0.08, 5e-5: 0.03}
+TOLERANCE = {1e-4: float("nan"), 6.6667e-5: float("nan"), 5e-5: 0.03}
 ERROR_LABEL = "relative error of the steady centre (plug) velocity"
 REFERENCE = "analytic Bingham plane Poiseuille flow: s0 = tau_y/(rho F), u_c = rho F (H - s0)^2 / (2 mu_p)"
 RHO, F, MU_P, TAU_Y, L = 1000.0, 2e-4, 1e-3, 5e-5, 1e-3
 H = L / 2
 S0 = TAU_Y / (RHO * F)
-QUICK_INDEX = 0
+QUICK_INDEX = 2  # the rung that carries the issue's tolerance
 
 
 def analytic(y):
@@ -26,6 +28,11 @@ def analytic(y):
 
 def configure(scene, dp, option):
     set_dp(scene, dp)
+    # The periodic strip along x keeps 8 particles at every rung (it must span the kernel support).
+    length = 8 * dp
+    scene["domain"]["max"][0] = length
+    for body in scene["bodies"]:
+        next(iter(body["shape"].values()))["max"][0] = length
     scene["outputs"] = [{"type": "hdf5", "every": 0.2, "fields": ["velocity", "shear_rate", "mu_eff"]}]
     return scene
 

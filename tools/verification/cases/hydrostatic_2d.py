@@ -13,6 +13,10 @@ LADDER = [0.04, 0.02, 0.01]
 TOLERANCE = {0.04: 0.01, 0.02: 0.01, 0.01: 0.01}
 ERROR_LABEL = "|p_bottom - rho0 g (H - y)| / (rho0 g H) over the lowest particle row, after 2 s"
 REFERENCE = "hydrostatics, p = rho0 g (H - y), H = 0.4 m"
+# The settled pressure's error is set by the compressibility (c0 = 20 sqrt(gH)) and the kernel's
+# gradient error on a lattice (h/dp = 1.5), both held fixed along the ladder: it must stay
+# within 1 % at every dp, not fall.
+CONVERGES = False
 RHO0, G, H = 1000.0, 9.81, 0.4
 
 
