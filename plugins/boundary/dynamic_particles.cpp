@@ -9,20 +9,22 @@
 #include "talus/geometry.hpp"
 #include "talus/sph/fluid_terms.hpp"
 #include "talus/sph/pair_loop.hpp"
+#include "talus/sph/wall_fields.hpp"
 #include "talus/world.hpp"
 
 namespace talus::boundary {
 
 namespace {
 
-const FieldInfo wall_velocity{"velocity", FieldType::vector, "m/s", true, true};
-const FieldInfo wall_density{"density", FieldType::scalar, "kg/m^3", true, true};
-const FieldInfo wall_pressure{"pressure", FieldType::scalar, "Pa", true, false};
-const FieldInfo wall_mass{"mass", FieldType::scalar, "kg", false, true};
-const FieldInfo wall_sound_speed{"sound_speed", FieldType::scalar, "m/s", false, false};
+using sph::wall_velocity;
+using sph::wall_density;
+using sph::wall_pressure;
+using sph::wall_mass;
+using sph::wall_sound_speed;
+using sph::wall_density_rate;
+using sph::wall_density_n;
+
 const FieldInfo wall_position0{"position0", FieldType::vector, "m", false, true};
-const FieldInfo wall_density_rate{"density_rate", FieldType::scalar, "kg/m^3/s", false, false};
-const FieldInfo wall_density_n{"density_n", FieldType::scalar, "kg/m^3", false, false};
 
 // The wall store's fields over this model's particles [first, first + count).
 struct WallFields {
