@@ -325,10 +325,9 @@ void Simulation::resort_particles() {
   if (world_.fluid.size() == 0) return;
   const double cell = world_.h > 0 ? world_.kernel.support_radius() : 2.0 * world_.dp;
   if (!(cell > 0)) return;
-  CellList cells;
-  cells.configure(world_.dim, world_.lo, world_.hi, cell, {});
-  cells.build(world_.fluid.position());
-  world_.fluid.reorder(cells.order());
+  resort_cells_.configure(world_.dim, world_.lo, world_.hi, cell, {});
+  resort_cells_.build(world_.fluid.position());
+  world_.fluid.reorder(resort_cells_.order());
   world_.refresh_material_index();
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "scene.hpp"
+#include "talus/cell_list.hpp"
 #include "talus/world.hpp"
 
 namespace talus {
@@ -86,6 +87,7 @@ class TALUS_API Simulation {
   double last_output_time_ = -1.0;
   std::string output_directory_;
   std::vector<std::uint8_t> escaped_;  // scratch, reused
+  CellList resort_cells_;              // reused by every re-sort: no allocation once sized
 };
 
 }  // namespace talus

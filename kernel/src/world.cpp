@@ -17,7 +17,9 @@ World::World() = default;
 World::~World() = default;
 
 void World::refresh_material_index() {
-  material_index_.assign(materials.size(), {});
+  // Clear rather than rebuild, so the index vectors keep their capacity.
+  material_index_.resize(materials.size());
+  for (auto& index : material_index_) index.clear();
   const auto mat = fluid.material();
   for (std::size_t i = 0; i < fluid.size(); ++i)
     if (mat[i] >= 0 && static_cast<std::size_t>(mat[i]) < materials.size())

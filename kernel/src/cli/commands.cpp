@@ -104,10 +104,6 @@ std::string share_dir() {
 #endif
 }
 
-struct Found {
-  const ModelRecord* record = nullptr;
-};
-
 const ModelRecord& find_model(PluginRegistry& registry, const std::string& spec) {
   // "NAME" or "KIND/NAME".
   std::string kind, name = spec;
