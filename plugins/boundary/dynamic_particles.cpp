@@ -63,13 +63,55 @@ int wall_material(const World& world, const Body& body) {
                                    std::to_string(fluid_materials.size()) + " fluid materials");
 }
 
+// Shepard interpolation of the fluid velocity at a wall particle b (i = b, j = f):
+// v~_b = sum_f v_f W_bf / sum_f W_bf (Adami et al. 2012, eq. 22).
+struct VelocityShepard {
+  static constexpr bool uses_value = true, uses_gradient = false;
+  const Vec3* velocity = nullptr;
+  template <class S>
+  void pair(const sph::Pair& q, S& s) const {
+    s.wsum += q.w;
+    s.vsum += velocity[q.j] * q.w;
+  }
+};
+
+// What a wall particle sums over its fluid neighbours.
+struct WallSums {
+  Vec3 v;             // v_b, the wall's own velocity (continuity)
+  double drho = 0.0;  // continuity
+  double wsum = 0.0;  // Shepard weights
+  Vec3 vsum;          // Shepard-weighted fluid velocity
+};
+
+// The wall's position wrapped into the period on periodic axes (a wall moving
+// along a periodic axis, e.g. the lid of a Couette cell).
+Vec3 wrap_periodic(Vec3 x, const World& world) {
+  for (int a = 0; a < world.dim; ++a)
+    if (world.periodic[a]) {
+      const double period = world.hi[a] - world.lo[a];
+      x[a] -= period * std::floor((x[a] - world.lo[a]) / period);
+    }
+  return x;
+}
+
 }  // namespace
 
 ParamSet DynamicParticles::describe() {
-  return ParamSet{"dynamic_particles",
-                  "dynamic boundary particles (DBC, Crespo et al. 2007, as DualSPHysics): wall particles with density "
-                  "from continuity and pressure from the wall material's EOS"};
+  ParamSet p{"dynamic_particles",
+             "dynamic boundary particles (DBC, Crespo et al. 2007, as DualSPHysics): wall particles with density "
+             "from continuity and pressure from the wall material's EOS"};
+  p.choice("no_slip", {"extrapolated", "wall_velocity"})
+      .default_value("extrapolated")
+      .doc("wall velocity in the laminar/Laplacian viscous term: extrapolated = 2 v_wall - Shepard(v_fluid) (Adami et "
+           "al. 2012; no-slip on the wall surface, second order), wall_velocity = the wall particle's own (DualSPHysics "
+           "DBC; no-slip ~0.7 dp behind the surface, first order). Artificial viscosity always uses the wall's own");
+  return p;
 }
+
+DynamicParticles::DynamicParticles(const ParamValues& v)
+    // Validated values always hold "no_slip" (it has a default); tests may pass none.
+    : no_slip_(v.has("no_slip") && v.string("no_slip") == "wall_velocity" ? NoSlip::wall_velocity
+                                                                          : NoSlip::extrapolated) {}
 
 void DynamicParticles::setup(World& world, std::span<const int> bodies) {
   ParticleStore& s = world.boundary;
@@ -127,6 +169,8 @@ void DynamicParticles::setup(World& world, std::span<const int> bodies) {
 
 void DynamicParticles::bind(World& world, const sph::FluidSettings& settings) {
   settings_ = settings;
+  mirror_ = no_slip_ == NoSlip::extrapolated && settings.viscosity != sph::ViscosityModel::artificial;
+  noslip_v_.assign(mirror_ ? count_ : 0, Vec3{});
   WallFields w(world.boundary, first_, count_);
   // Per-material index lists for the EOS batch calls (indices in world.boundary).
   by_material_.assign(world.materials.size(), {});
@@ -142,6 +186,9 @@ void DynamicParticles::bind(World& world, const sph::FluidSettings& settings) {
       lo[a] = std::min(lo[a], p[a]);
       hi[a] = std::max(hi[a], p[a] + 1e-9);
     }
+  // Moving walls start with their prescribed velocity (an impulsively started lid moves from the first step).
+  if (moves_)
+    for (std::size_t k = 0; k < count_; ++k) w.v[k] = motion_[slot_of_body_[w.body[k]]].velocity(w.x0[k], world.time);
   const double radius = settings.kernel->support_radius();
   cells_.configure(world.dim, lo, hi, radius, world.periodic);
   cells_.build(w.x);
@@ -201,7 +248,31 @@ void DynamicParticles::interact(World& world, const sph::FluidView& fluid, const
   const double* mu = settings_.material_mu.data();
   const bool continuity = !settings_.summation_density;
 
+  // Wall side first: continuity of each wall particle with its fluid neighbours
+  // and, for the extrapolated no-slip, the mirrored velocity v_b* = 2 v_b - v~_b.
+  auto wstart = [&](Index b) { return WallSums{w.v[b], 0.0, 0.0, Vec3{}}; };
+  auto wfinish = [&](Index b, const WallSums& s) { w.drho[b] = s.drho; };
+  auto wfinish_mirror = [&](Index b, const WallSums& s) {
+    w.drho[b] = s.drho;
+    // No fluid in reach: nothing to mirror, the wall's own velocity.
+    noslip_v_[b] = s.wsum > 0.0 ? w.v[b] * 2.0 - s.vsum * (1.0 / s.wsum) : w.v[b];
+  };
+  const std::span<const Vec3> wx = w.x;
+  const sph::Continuity wall_cont{fluid_neighbours(fluid)};
+  std::uint64_t pairs = 0;
+  if (mirror_) {
+    if (noslip_v_.size() != count_) noslip_v_.resize(count_);
+    pairs += sph::pair_pass(count_, wx, *fluid.cells, fluid.position, kernel, sph::other_set, wstart, wfinish_mirror,
+                            wall_cont, VelocityShepard{fluid.velocity.data()});
+  } else {
+    pairs += sph::pair_pass(count_, wx, *fluid.cells, fluid.position, kernel, sph::other_set, wstart, wfinish,
+                            wall_cont);
+  }
+
   // Fluid side: forces and density rates of the walls on fluid particle i.
+  // The viscous term sees the mirrored wall velocity, pressure and continuity the wall's own.
+  sph::Neighbours visc_nb = wall_nb;
+  if (mirror_) visc_nb.velocity = noslip_v_.data();
   auto start = [&](Index i) {
     sph::FluidSums s;
     s.v = fluid.velocity[i];
@@ -220,31 +291,20 @@ void DynamicParticles::interact(World& world, const sph::FluidView& fluid, const
   const std::size_t nf = fluid.position.size();
   const sph::PressureForce pressure{wall_nb};
   const sph::Continuity cont{wall_nb};
-  std::uint64_t pairs = 0;
   switch (settings_.viscosity) {
     case sph::ViscosityModel::artificial:
-      pairs = sph::pair_pass(nf, fluid.position, cells_, w.x, kernel, sph::other_set, start, finish, pressure,
-                             sph::ArtificialViscosity{wall_nb, settings_.alpha * kernel.h()}, cont);
+      pairs += sph::pair_pass(nf, fluid.position, cells_, wx, kernel, sph::other_set, start, finish, pressure,
+                              sph::ArtificialViscosity{wall_nb, settings_.alpha * kernel.h()}, cont);
       break;
     case sph::ViscosityModel::laminar:
-      pairs = sph::pair_pass(nf, fluid.position, cells_, w.x, kernel, sph::other_set, start, finish, pressure,
-                             sph::LaminarViscosity<true>{wall_nb, mu}, cont);
+      pairs += sph::pair_pass(nf, fluid.position, cells_, wx, kernel, sph::other_set, start, finish, pressure,
+                              sph::LaminarViscosity<true>{visc_nb, mu}, cont);
       break;
     case sph::ViscosityModel::laplacian:
-      pairs = sph::pair_pass(nf, fluid.position, cells_, w.x, kernel, sph::other_set, start, finish, pressure,
-                             sph::LaplacianViscosity{wall_nb, &kernel}, cont);
+      pairs += sph::pair_pass(nf, fluid.position, cells_, wx, kernel, sph::other_set, start, finish, pressure,
+                              sph::LaplacianViscosity{visc_nb, &kernel}, cont);
       break;
   }
-
-  // Wall side: continuity of each wall particle with its fluid neighbours.
-  struct WallSums {
-    Vec3 v;
-    double drho = 0.0;
-  };
-  auto wstart = [&](Index b) { return WallSums{w.v[b], 0.0}; };
-  auto wfinish = [&](Index b, const WallSums& s) { w.drho[b] = s.drho; };
-  pairs += sph::pair_pass(count_, std::span<const Vec3>(w.x), *fluid.cells, fluid.position, kernel, sph::other_set,
-                          wstart, wfinish, sph::Continuity{fluid_neighbours(fluid)});
   pairs_ = pairs;
 }
 
@@ -269,7 +329,7 @@ void DynamicParticles::advance_walls(World& world, double time, double dt) {
 #pragma omp parallel for schedule(static) if (count_ >= 4096)
     for (std::size_t b = 0; b < count_; ++b) {
       const PrescribedMotion& motion = motion_[slot_of_body_[w.body[b]]];
-      w.x[b] = motion.position(w.x0[b], time);
+      w.x[b] = wrap_periodic(motion.position(w.x0[b], time), world);
       w.v[b] = motion.velocity(w.x0[b], time);
     }
   }
@@ -281,8 +341,9 @@ void DynamicParticles::describe_passes(StagePlan& plan) const {
   for (const auto& n : body_names_) names += (names.empty() ? "'" : ", '") + n + "'";
   plan.passes.push_back("fluid-wall pass (dynamic_particles " + names +
                         "): wall pressure + viscosity + continuity on the fluid");
-  plan.passes.push_back("wall-fluid pass (dynamic_particles " + names + "): wall continuity, wall EOS" +
-                        (moves_ ? ", prescribed motion" : ""));
+  plan.passes.push_back("wall-fluid pass (dynamic_particles " + names + "): wall continuity" +
+                        (mirror_ ? ", extrapolated no-slip velocity 2 v_wall - Shepard(v_fluid)" : "") +
+                        ", wall EOS" + (moves_ ? ", prescribed motion" : ""));
 }
 
 }  // namespace talus::boundary

@@ -10,6 +10,10 @@ SCENE = "share/scenes/bingham_channel_2d.json"
 # ~20 min on a 2-core machine, so the ladder stops at L/20, where the issue's 3 % applies.
 # The issue sets 3 % (at L/20 here); the coarser rungs, with 10 and 15 particles across the channel,
 # cannot resolve the plug and carry no tolerance: they must only show the error falling.
+# The scene uses the extrapolated no-slip wall and the harmonic pair viscosity. With the arithmetic mean the
+# plug's regularised viscosity (100 mu_p) leaks into the yielded layer and u_c is 16 % low at L/20 (measured
+# 2026-11-22); the old 2.4 % there was that error cancelled by the DBC wall's ~0.7 dp wider channel. With the
+# harmonic mean u_c at L/20 is 1.021 x the ideal value, the exact regularised (m = 2000) solution being 1.020 x.
 LADDER = [1e-4, 6.6667e-5, 5e-5]
 TOLERANCE = {1e-4: float("nan"), 6.6667e-5: float("nan"), 5e-5: 0.03}
 ERROR_LABEL = "relative error of the steady centre (plug) velocity"
