@@ -1,8 +1,10 @@
 #include "bingham.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "bingham_basal.hpp"
+#include "hbp_formula.hpp"
 
 namespace talus::rheology {
 
@@ -14,6 +16,9 @@ ParamSet Bingham::describe() {
       .doc("Papanastasiou exponent m of the regularised apparent viscosity");
   p.choice("basal", {"exact", "pastor"}).default_value("exact")
       .doc("basal shear: exact cubic root, or Pastor's quadratic approximation (seed eq. 13)");
+  p.real("max_viscosity").unit("Pa s").greater_than(0.0).optional()
+      .doc("cap mu_max of the plug viscosity (bi-viscosity), bounds the viscous step C h^2 rho/mu_max; "
+           "absent: no cap (plug viscosity mu_p + tau_y m)");
   return p;
 }
 
@@ -21,17 +26,12 @@ Bingham::Bingham(const ParamValues& v)
     : yield_stress_(v.real("yield_stress")),
       viscosity_(v.real("viscosity")),
       regularisation_(v.real("regularisation")),
+      max_viscosity_(v.has("max_viscosity") ? v.real("max_viscosity") : std::numeric_limits<double>::infinity()),
       pastor_(v.string("basal") == "pastor") {}
 
 void Bingham::apparent_viscosity(std::span<const Index> idx, const ViscosityInputs& in, double* mu) const {
-  const double mp = viscosity_, ty = yield_stress_, m = regularisation_;
-  for (const Index i : idx) {
-    const double d = in.shear_rate[i];
-    const double x = m * d;
-    // (1 - exp(-x)) / d, written with expm1 so that it stays accurate as d -> 0.
-    const double plastic = x > 1e-12 ? -std::expm1(-x) / d : m;
-    mu[i] = mp + ty * plastic;
-  }
+  const double mp = viscosity_, ty = yield_stress_, m = regularisation_, mu_max = max_viscosity_;
+  for (const Index i : idx) mu[i] = cap_viscosity(mp + ty * papanastasiou_factor(m, in.shear_rate[i]), mu_max);
 }
 
 void Bingham::basal_shear(std::span<const Index> idx, const BasalInputs& in, double* tau) const {

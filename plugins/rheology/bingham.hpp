@@ -1,7 +1,9 @@
 // Bingham viscoplastic fluid.
 // Full SPH: Papanastasiou-regularised apparent viscosity
 //   mu_eff = mu_p + tau_y (1 - exp(-m |D|)) / |D|   (-> mu_p + tau_y m at |D| = 0)
-// (Papanastasiou 1987, J. Rheol. 31; seed sph-liquid-sediment §HBP with n = 1).
+// (Papanastasiou 1987, J. Rheol. 31; seed sph-liquid-sediment §HBP with n = 1),
+// optionally capped, mu_eff = min(mu_eff, max_viscosity): the bi-viscosity
+// plug that bounds the viscous time step (hbp_formula.hpp, cap_viscosity).
 // Depth-integrated flow: basal shear tau_b = tau_y / eta from the infinite
 // landslide relation (seed pfe-ie §2.2.2 eqs 10-13), solved exactly by
 // default or with Pastor's quadratic (`basal: pastor`), see bingham_basal.hpp.
@@ -24,7 +26,7 @@ class Bingham final : public Rheology {
   void basal_shear(std::span<const Index> idx, const BasalInputs& in, double* tau) const override;
 
  private:
-  double yield_stress_, viscosity_, regularisation_;
+  double yield_stress_, viscosity_, regularisation_, max_viscosity_;
   bool pastor_;
 };
 

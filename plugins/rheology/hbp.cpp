@@ -1,5 +1,7 @@
 #include "hbp.hpp"
 
+#include <limits>
+
 namespace talus::rheology {
 
 ParamSet Hbp::describe() {
@@ -16,6 +18,15 @@ ParamSet Hbp::describe() {
   p.real("consistency").unit("Pa s^n").greater_than(0.0).doc("consistency K (n = 1: the plastic viscosity)");
   p.real("min_shear_rate").unit("1/s").greater_than(0.0).default_value(1e-6)
       .doc("lower bound of the shear rate in K gd^(n-1) (bounds it at rest for n < 1)");
+  p.choice("yield_pressure", {"total", "effective"})
+      .default_value("total")
+      .doc("pressure in the yield criterion: total p (the seed), or the skeleton's effective p (1 - rho_w/rho) "
+           "(Terzaghi, hydrostatic pore water; Fourtakas & Rogers 2016)");
+  p.real("pore_fluid_density").unit("kg/m^3").greater_than(0.0).default_value(1000.0)
+      .doc("pore water density rho_w of yield_pressure: effective (sea water: 1029)");
+  p.real("max_viscosity").unit("Pa s").greater_than(0.0).optional()
+      .doc("cap mu_max of the unyielded (plug) viscosity, bi-viscosity; bounds the viscous step C h^2 rho/mu_max "
+           "(rho h c0 keeps it >= the acoustic step); absent: no cap (plug viscosity tau_y m + K)");
   return p;
 }
 
@@ -33,14 +44,18 @@ Hbp::Hbp(const ParamValues& v)
       regularisation_(v.real("regularisation")),
       power_index_(v.real("power_index")),
       consistency_(v.real("consistency")),
-      min_shear_rate_(v.real("min_shear_rate")) {}
+      min_shear_rate_(v.real("min_shear_rate")),
+      pore_density_(v.string("yield_pressure") == "effective" ? v.real("pore_fluid_density") : 0.0),
+      max_viscosity_(v.has("max_viscosity") ? v.real("max_viscosity") : std::numeric_limits<double>::infinity()) {}
 
 void Hbp::apparent_viscosity(std::span<const Index> idx, const ViscosityInputs& in, double* mu) const {
   const double m = regularisation_, n = power_index_, k = consistency_, gmin = min_shear_rate_;
+  const double rho_w = pore_density_, mu_max = max_viscosity_;
   const YieldStress y = yield_;
   for (const Index i : idx) {
     const double gd = in.shear_rate[i];
-    mu[i] = y.at(in.pressure[i]) * papanastasiou_factor(m, gd) + power_law_viscosity(k, n, gd, gmin);
+    const double tau_y = y.at(effective_pressure(in.pressure[i], in.density[i], rho_w));
+    mu[i] = cap_viscosity(tau_y * papanastasiou_factor(m, gd) + power_law_viscosity(k, n, gd, gmin), mu_max);
   }
 }
 

@@ -65,4 +65,30 @@ struct YieldStress {
   double at(double p) const { return offset + slope * std::max(p, 0.0); }
 };
 
+// Effective (skeleton) pressure of a saturated sediment, Terzaghi p' = p - p_w.
+// Fourtakas & Rogers (2016, Adv. Water Resour. 92, §3) apply the yield
+// criterion to the sediment skeleton, not to the total pressure of the
+// water-sediment mixture. With only the particle's own p and rho at hand (the
+// batch interface), the pore pressure is closed locally as hydrostatic in a
+// saturated column, p_w = (rho_w / rho) p, so p' = p (1 - rho_w / rho): the
+// submerged (buoyant) weight of the column above. Exact where no free water
+// stands over the sediment column (emerged bank, dry-topped bed); under a
+// water layer of depth H_w it overstates p' by (1 - rho_w/rho) rho_w g H_w
+// (i.e. errs on the strong side). rho_w = 0 gives the total pressure.
+inline double effective_pressure(double p, double rho, double rho_w) {
+  return rho_w > 0.0 && rho > 0.0 ? p * (1.0 - rho_w / rho) : p;
+}
+
+// The bi-viscosity cap of the unyielded region (max_viscosity, mu_max):
+// mu_eff = min(mu, mu_max). The regularised plug viscosity tau_y m (2e5 Pa s
+// for the coastline seed's sediment) makes the explicit viscous step
+// dt <= C h^2 rho / mu ~ 1e-6 s. The unyielded sediment is a very viscous
+// fluid in these models (Fourtakas & Rogers 2016 §3); bounding its viscosity
+// keeps the explicit step practical. With the cap the model is a bi-viscosity
+// Bingham/HBP law (O'Donovan & Tanner 1984, J. Non-Newton. Fluid Mech. 15):
+// the material is unyielded below the yield shear rate tau_y / mu_max and
+// creeps there at gd = tau / mu_max. Choosing mu_max = rho h c0 makes the
+// viscous step no smaller than the acoustic one, C h / c0.
+inline double cap_viscosity(double mu, double mu_max) { return mu < mu_max ? mu : mu_max; }
+
 }  // namespace talus::rheology

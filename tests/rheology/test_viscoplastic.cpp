@@ -109,6 +109,29 @@ TEST(Hbp, DruckerPragerYieldStress) {
   EXPECT_NEAR(mu_of(hbp, {2.0}, {100.0})[0], 0.126 + tau_y / 2.0, 1e-9);
 }
 
+TEST(Hbp, MaxViscosityCapsThePlugOnly) {
+  // Plug tau_y m + K = 10 * 100 + 2 = 1002 Pa s, capped at 50; a yielded rate (gd = 4/s) is below the cap: unchanged.
+  const auto capped = make<talus::rheology::Hbp>(
+      R"({"yield_stress": 10, "regularisation": 100, "consistency": 2, "max_viscosity": 50})");
+  const auto free = make<talus::rheology::Hbp>(R"({"yield_stress": 10, "regularisation": 100, "consistency": 2})");
+  EXPECT_DOUBLE_EQ(mu_of(capped, {0.0})[0], 50.0);
+  EXPECT_DOUBLE_EQ(mu_of(free, {0.0})[0], 1002.0);
+  EXPECT_DOUBLE_EQ(mu_of(capped, {4.0})[0], mu_of(free, {4.0})[0]);
+  const auto bingham = make<talus::rheology::Bingham>(
+      R"({"yield_stress": 10, "viscosity": 2, "regularisation": 100, "max_viscosity": 50})");
+  EXPECT_DOUBLE_EQ(mu_of(bingham, {0.0})[0], 50.0);
+  EXPECT_DOUBLE_EQ(mu_of(bingham, {4.0})[0], mu_of(free, {4.0})[0]);
+}
+
+TEST(Hbp, EffectivePressureIsTheBuoyantShare) {
+  // yield_pressure effective: p' = p (1 - rho_w / rho); rho = 1000 in mu_of, rho_w = 400: p' = 0.6 p.
+  const auto eff = make<talus::rheology::Hbp>(
+      R"({"yield": "mohr_coulomb", "cohesion": 1, "friction_angle": 35, "regularisation": 1e6, "consistency": 0.126,
+          "yield_pressure": "effective", "pore_fluid_density": 400})");
+  const auto mu = mu_of(eff, {2.0}, {100.0});
+  EXPECT_NEAR(mu[0], 0.126 + (1.0 + 60.0 * 0.70020753820970977) / 2.0, 1e-9);
+}
+
 TEST(Hbp, NotNewtonianSoTheStageRunsThreePasses) {
   const auto hbp = make<talus::rheology::Hbp>(R"({"consistency": 1})");
   EXPECT_FALSE(hbp.is_newtonian());
