@@ -13,6 +13,9 @@ namespace talus::runout {
 namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
+// Below this many particles a step's loops run on one thread: a fork/join
+// per loop costs more than the work (and far more on a loaded machine).
+constexpr std::size_t parallel_min = 1024;
 
 std::string format(const char* fmt, double a, double b = 0.0, double c = 0.0, double d = 0.0) {
   char buf[256];
@@ -95,6 +98,9 @@ void DepthIntegratedSph::setup(World& world) {
                        "] reaches beyond the DEM " + terrain_->summary() + "; shrink the domain");
   }
   notes_ = {"terrain: " + terrain_->summary(), "gravity " + format("%.4g", g_) + " m/s^2 along -Z"};
+  // Level 0 holds l <= sqrt(2) h: particles at the scene's h (the start, a
+  // uniform layer) sit mid-level, not astride a level boundary.
+  grid_.configure(world.lo, world.hi, world.periodic, kernel_.support * world.h * std::sqrt(2.0));
 
   ParticleStore& s = world.fluid;
   s.require({"velocity", FieldType::vector, "m/s", true, true});
@@ -203,23 +209,22 @@ void DepthIntegratedSph::setup(World& world) {
   record(world);
 }
 
-void DepthIntegratedSph::configure_cells(const World& world, double max_smoothing) {
-  const double radius = kernel_.support * max_smoothing;
-  // Re-bin only when the search radius outgrows the cells or shrinks well below them.
-  if (radius > cell_size_ || radius < 0.6 * cell_size_) {
-    cell_size_ = radius * 1.15;
-    cells_.configure(2, world.lo, world.hi, cell_size_, world.periodic);
-  }
+// Bins the particles by search radius (kernel support x smoothing length).
+void DepthIntegratedSph::bin_particles(std::span<const Vec3> pos, std::span<const double> smoothing) {
+  reach_.resize(pos.size());
+  const double sup = kernel_.support;
+  for (std::size_t i = 0; i < pos.size(); ++i) reach_[i] = sup * smoothing[i];
+  grid_.build(pos, reach_);
 }
 
 void DepthIntegratedSph::update_smoothing(std::span<const double> volume, std::span<double> smoothing) const {
   if (!variable_smoothing_) return;
   const double k = kappa_, lo = l_min_, hi = l_max_, k_depth = kappa_ / dp_;
   if (depth_law_) {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (volume.size() > parallel_min)
     for (std::size_t i = 0; i < volume.size(); ++i) smoothing[i] = std::clamp(k_depth * volume[i] / sigma_[i], lo, hi);
   } else {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (volume.size() > parallel_min)
     for (std::size_t i = 0; i < volume.size(); ++i)
       smoothing[i] = std::clamp(k * std::sqrt(volume[i] / sigma_[i]), lo, hi);
   }
@@ -241,15 +246,14 @@ void DepthIntegratedSph::compute_depth(World& world, int iterations) {
   terrain_->sample(pos, z_.data(), grad_.data());
   for (std::size_t i = 0; i < n; ++i) cos_[i] = 1.0 / std::sqrt(1.0 + norm2(grad_[i]));
   for (int it = 0; it < iterations; ++it) {
-    configure_cells(world, *std::max_element(ell.begin(), ell.end()));
-    cells_.build(pos);
+    bin_particles(pos, ell);
     const VariableKernel kern = kernel_;
     const double sup = kern.support;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > parallel_min)
     for (std::size_t i = 0; i < n; ++i) {
       const double li = ell[i];
       double sum = 0.0;
-      cells_.for_each_neighbour(pos[i], pos, sup * li, [&](Index j, const Vec3&, double r2) {
+      grid_.for_each_neighbour(pos[i], pos, sup * li, false, [&](Index j, const Vec3&, double r2) {
         sum += vol[j] * kern.w(std::sqrt(r2), li);
       });
       sigma_[i] = sum;
@@ -269,7 +273,7 @@ double DepthIntegratedSph::stable_time_step(const World& world) {
   auto speed = s.scalar("speed");
   double dt = inf;
   const double g = g_;
-#pragma omp parallel for reduction(min : dt) schedule(static)
+#pragma omp parallel for reduction(min : dt) schedule(static) if (s.size() > parallel_min)
   for (std::size_t i = 0; i < s.size(); ++i) {
     const double c = std::sqrt(g * std::max(depth[i], 0.0)) + speed[i];
     if (c > 0.0) dt = std::min(dt, ell[i] / c);
@@ -300,14 +304,13 @@ void DepthIntegratedSph::advance(World& world, double dt) {
 
   // 1. Terrain under each particle.
   terrain_->sample(pos, z_.data(), grad_.data());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > parallel_min)
   for (std::size_t i = 0; i < n; ++i) cos_[i] = 1.0 / std::sqrt(1.0 + norm2(grad_[i]));
 
   // 2. Depth: sigma_i = sum_j V_j W(r_ij, l_i) (gather).
-  configure_cells(world, *std::max_element(ell.begin(), ell.end()));
-  cells_.build(pos);
+  bin_particles(pos, ell);
   const VariableKernel kern = kernel_;
-  const double sup = kern.support, rmax = cell_size_;
+  const double sup = kern.support;
   //    With l = l(sigma), the variational ("grad-h") factor
   //    alpha_i = 1 - (d sigma_i / d l_i)(d l_i / d sigma_i) enters the pressure
   //    force (Rodriguez-Paz & Bonet 2005, Comput. Struct. 83): for the area law
@@ -315,11 +318,11 @@ void DepthIntegratedSph::advance(World& world, double dt) {
   //    at a bound (or fixed). It keeps thin fronts moving at the right speed.
   const double lo_l = l_min_, hi_l = l_max_;
   const bool area_law = variable_smoothing_ && !depth_law_, depth_law = variable_smoothing_ && depth_law_;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > parallel_min)
   for (std::size_t i = 0; i < n; ++i) {
     const double li = ell[i];
     double sum = 0.0, moment = 0.0;
-    cells_.for_each_neighbour(pos[i], pos, sup * li, [&](Index j, const Vec3&, double r2) {
+    grid_.for_each_neighbour(pos[i], pos, sup * li, false, [&](Index j, const Vec3&, double r2) {
       const double r = std::sqrt(r2);
       sum += vol[j] * kern.w(r, li);
       moment += vol[j] * r2 * kern.dw_over_r(r, li);
@@ -337,11 +340,11 @@ void DepthIntegratedSph::advance(World& world, double dt) {
   // 3. Pressure gradient (symmetric in i, j: momentum-conserving on a plane)
   //    mapped to the surface, plus gravity along the slope.
   double amax = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : amax)
+#pragma omp parallel for schedule(static) reduction(max : amax) if (n > parallel_min)
   for (std::size_t i = 0; i < n; ++i) {
     const double li = ell[i], ci2 = cos_[i] * cos_[i];
     Vec3 a{};
-    cells_.for_each_neighbour(pos[i], pos, rmax, [&](Index j, const Vec3& dx, double r2) {
+    grid_.for_each_neighbour(pos[i], pos, sup * li, true, [&](Index j, const Vec3& dx, double r2) {
       const double r = std::sqrt(r2);
       const double lj = ell[j];
       if (r >= sup * std::max(li, lj)) return;
@@ -359,7 +362,7 @@ void DepthIntegratedSph::advance(World& world, double dt) {
   max_accel_ = amax;
 
   // 4. Kick with the driving forces; speed along the surface.
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > parallel_min)
   for (std::size_t i = 0; i < n; ++i) {
     Vec3 v = vel[i] + dt * accel_[i];
     v.z = 0.0;
@@ -385,7 +388,7 @@ void DepthIntegratedSph::advance(World& world, double dt) {
   auto out_speed = s.scalar("speed");
   const Vec3 lo = world.lo, hi = world.hi;
   const auto periodic = world.periodic;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > parallel_min)
   for (std::size_t i = 0; i < n; ++i) {
     const double decel = depth[i] > 0.0 ? tau_[i] / (density_[i] * depth[i]) * dt : 0.0;
     const double sp = speed_[i];

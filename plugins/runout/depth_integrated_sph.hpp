@@ -18,6 +18,8 @@
 //   smoothing l_i = (h_over_dp) sqrt(V_i / sigma_i) (flow spreading in plan) or
 //             l_0 sigma_0 / sigma_i (spreading along one direction), within bounds.
 //   time      symplectic Euler (kick then drift), dt = cfl l / (sqrt(g h) + |v|).
+//   neighbours LevelGrid: particles binned by smoothing length, so the few
+//             large-l particles of a thin front do not set every cell's size.
 // On an inclined plane this reduces exactly to the Savage-Hutter equations
 // in slope coordinates that Mangeney et al. (2000) solve.
 #pragma once
@@ -26,9 +28,9 @@
 #include <string>
 #include <vector>
 
-#include "talus/cell_list.hpp"
 #include "talus/rheology.hpp"
 #include "talus/stage.hpp"
+#include "level_grid.hpp"
 #include "rasters.hpp"
 #include "terrain.hpp"
 #include "variable_kernel.hpp"
@@ -60,16 +62,16 @@ class DepthIntegratedSph final : public Stage {
  private:
   void compute_depth(World& world, int iterations);
   void update_smoothing(std::span<const double> volume, std::span<double> smoothing) const;
-  void configure_cells(const World& world, double max_smoothing);
+  void bin_particles(std::span<const Vec3> pos, std::span<const double> smoothing);
   void record(World& world);
 
   ParamValues params_;
   std::unique_ptr<Terrain> terrain_;
   VariableKernel kernel_;
-  CellList cells_;
+  LevelGrid grid_;  // neighbour search binned by smoothing length
   RunoutRasters rasters_;
   double g_ = 9.81, cfl_ = 0.2, kappa_ = 1.3, l_min_ = 0.0, l_max_ = 0.0, threshold_ = 0.01;
-  double cell_size_ = 0.0, max_accel_ = 0.0, runout_ = 0.0;
+  double max_accel_ = 0.0, runout_ = 0.0;
   double dp_ = 1.0;
   bool variable_smoothing_ = true, depth_law_ = false;
   std::int64_t raster_every_ = 1;
@@ -79,7 +81,7 @@ class DepthIntegratedSph final : public Stage {
   std::vector<std::string> notes_;
 
   // Scratch, re-filled every step (sized when the particle count changes).
-  std::vector<double> z_, cos_, sigma_, alpha_, speed_, density_, gn_, tau_;
+  std::vector<double> reach_, z_, cos_, sigma_, alpha_, speed_, density_, gn_, tau_;
   double alpha_floor_ = 0.2;  // bounds the grad-h factor of nearly isolated particles
   std::vector<Vec3> grad_, accel_;
 };

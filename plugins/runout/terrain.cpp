@@ -16,7 +16,7 @@ double tan_deg(double deg) { return std::tan(deg * std::numbers::pi / 180.0); }
 // Loops a final surface's inline formulas over all positions.
 template <class Surface>
 void sample_all(const Surface& s, std::span<const Vec3> pos, double* z, Vec3* grad) {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (pos.size() > 4096)  // cheap per point: fork/join costs more below
   for (std::size_t i = 0; i < pos.size(); ++i) {
     z[i] = s.Surface::elevation(pos[i].x, pos[i].y);
     grad[i] = s.Surface::gradient(pos[i].x, pos[i].y);

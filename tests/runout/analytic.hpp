@@ -38,4 +38,15 @@ inline double mangeney_front(double t, double h0, double g, double theta, double
   return 2.0 * std::sqrt(gc * h0) * t + 0.5 * m * t * t;
 }
 
+// Where a dam break (Ritter on a flat bed, or Mangeney's in its frame sliding
+// by `shift` = m t^2 / 2) puts the material point with `volume` (per unit
+// width, integral of h along the flow) ahead of it: the front holds
+// (s_f - s)^3 / (27 g_n t^2) in the fan, h0 per metre behind it (g_n = g cos theta).
+inline double dam_break_position(double volume, double t, double h0, double g_n, double shift = 0.0) {
+  const double c0 = std::sqrt(g_n * h0);
+  const double fan = c0 * c0 * c0 * t / g_n;
+  if (volume <= fan) return 2.0 * c0 * t + shift - std::cbrt(volume * 27.0 * g_n * t * t);
+  return -c0 * t + shift - (volume - fan) / h0;
+}
+
 }  // namespace talus::runout::test

@@ -24,15 +24,17 @@ std::unique_ptr<Rheology> coulomb(double delta_deg) {
 }
 
 struct DamBreakResult {
-  double l1 = 0.0;        // relative L1 error of the depth profile
-  double front = 0.0;     // farthest point where the SPH depth exceeds 1e-3 h0
-  double front_l = 0.0;   // smoothing length of the leading particle
+  double l1 = 0.0;     // relative L1 error of the depth profile
+  double front = 0.0;  // the front: the furthest particle (along the slope)
+  double front_l = 0.0;  // its smoothing length (along the slope)
+  double front_volume = 0.0;  // its volume per unit width (integral of h along the flow)
 };
 
 // A quasi-1D dam break spreads along x only, so the smoothing length follows
-// the particle spacing along x: the "depth" law, allowed to grow 6-fold at the
-// thin front. The strip is periodic across y.
-constexpr const char* strip_smoothing = R"("smoothing_law": "depth", "max_smoothing_ratio": 6, "depth_threshold": 0)";
+// the particle spacing along x: the "depth" law. Its bound (50 h) is never
+// reached, so the front particle's l is the honest local resolution there.
+// The strip is periodic across y.
+constexpr const char* strip_smoothing = R"("smoothing_law": "depth", "max_smoothing_ratio": 50, "depth_threshold": 0)";
 
 // Depth profile error on [s0, s1] (along the slope) and the front, for a
 // strip over a plane of cosine c.
@@ -46,15 +48,31 @@ DamBreakResult compare(const RunoutWorld& w, double width, double c, double s0, 
     ref += e;
   }
   r.l1 = err / ref;
-  for (double s = s1 - 4.0; s < s1 + 2.0; s += 0.01)
-    if (w.depth_at({s * c, 0.5 * width, 0.0}, c) > 1e-3) r.front = s;
   auto pos = w.world.fluid.position();
   auto ell = w.world.fluid.scalar("smoothing_length");
+  auto vol = w.world.fluid.scalar("volume");
   std::size_t lead = 0;
   for (std::size_t i = 0; i < pos.size(); ++i)
     if (pos[i].x > pos[lead].x) lead = i;
+  r.front = pos[lead].x / c;
   r.front_l = ell[lead] / c;
+  r.front_volume = vol[lead] / w.world.dp;
   return r;
+}
+
+// The front criterion of the issue: the furthest particle within two of its
+// smoothing lengths of the analytic front. The gap is not an error of the
+// dynamics: the exact profile holds only (s_f - s)^3 / (27 g t^2) of volume
+// near the front, so one particle's volume sits about cbrt(V) behind it. The
+// dynamics are checked separately: the leading particle must be where the
+// exact solution puts the middle of its volume (within l / 4).
+void expect_front(const char* name, const DamBreakResult& r, double exact_front, double exact_lead) {
+  std::printf("%s: front (furthest particle) %.3f m, exact %.3f m, gap %.3f m = %.2f l (l %.3f m); "
+              "exact position of its volume %.3f m (off by %.3f l)\n",
+              name, r.front, exact_front, exact_front - r.front, (exact_front - r.front) / r.front_l, r.front_l,
+              exact_lead, (r.front - exact_lead) / r.front_l);
+  EXPECT_NEAR(r.front, exact_front, 2.0 * r.front_l) << name;
+  EXPECT_NEAR(r.front, exact_lead, 0.25 * r.front_l) << name;
 }
 
 // Ritter: frictionless flat bed, reservoir of depth 1 m on [-7, 0]; compared
@@ -74,15 +92,12 @@ DamBreakResult ritter(double dp) {
 TEST(RitterDamBreak, DepthProfileAndFrontMatchAndErrorFallsWithResolution) {
   const DamBreakResult coarse = ritter(0.2);
   const DamBreakResult fine = ritter(0.1);
-  const double front = 2.0 * std::sqrt(g * 1.0) * 2.0 / std::sqrt(g);  // = 4 h0
-  std::printf("Ritter: dp 0.2 L1 %.4f front %.3f (l %.3f) | dp 0.1 L1 %.4f front %.3f (l %.3f); exact front %.3f\n",
-              coarse.l1, coarse.front, coarse.front_l, fine.l1, fine.front, fine.front_l, front);
+  const double t = 2.0 / std::sqrt(g), front = 2.0 * std::sqrt(g * 1.0) * t;  // = 4 h0
+  std::printf("Ritter: L1 %.4f (dp 0.2), %.4f (dp 0.1)\n", coarse.l1, fine.l1);
   EXPECT_LT(fine.l1, 0.05);
   EXPECT_LT(fine.l1, coarse.l1);
-  // The front within two smoothing lengths of the leading particle (the
-  // resolution there, which grows as the front thins).
-  EXPECT_NEAR(coarse.front, front, 2.0 * coarse.front_l);
-  EXPECT_NEAR(fine.front, front, 2.0 * fine.front_l);
+  expect_front("Ritter dp 0.2", coarse, front, dam_break_position(0.5 * coarse.front_volume, t, 1.0, g));
+  expect_front("Ritter dp 0.1", fine, front, dam_break_position(0.5 * fine.front_volume, t, 1.0, g));
 }
 
 // Mangeney: 30 deg plane, delta = 20 deg, h0 = 1 m (slope-normal) on s in
@@ -99,10 +114,12 @@ TEST(MangeneyDamBreak, CoulombDamBreakOnInclineMatchesAnalyticSolution) {
   const DamBreakResult r =
       compare(w, width, c, -2.0, 7.5, [&](double s) { return mangeney_depth(s, t, h0, g, theta, delta); });
   const double exact_front = mangeney_front(t, h0, g, theta, delta);
-  std::printf("Mangeney: L1 %.4f front %.3f m (l %.3f; exact %.3f m)\n", r.l1, r.front, r.front_l, exact_front);
+  std::printf("Mangeney: L1 %.4f\n", r.l1);
   EXPECT_NEAR(exact_front, 6.736, 1e-3);
   EXPECT_LT(r.l1, 0.05);
-  EXPECT_NEAR(r.front, exact_front, 2.0 * r.front_l);
+  const double gn = g * c, shift = 0.5 * (g * std::sin(theta) - gn * std::tan(delta)) * t * t;
+  // The volume per unit width along the slope: V / dp in plan is h ds (slope-normal h, ds = dx / c).
+  expect_front("Mangeney", r, exact_front, dam_break_position(0.5 * r.front_volume, t, h0, gn, shift));
   for (const double d : w.world.fluid.scalar("depth")) ASSERT_TRUE(std::isfinite(d) && d > 0.0);
 }
 
