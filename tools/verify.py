@@ -8,6 +8,10 @@ error against wall time, and the raw CSV.
   python3 tools/verify.py --quick         # smallest rung of every case (the test suite runs this)
   python3 tools/verify.py --case hydrostatic_2d --out /tmp/v
 
+Hard cases (cases/hard_*.py, HARD_CASE = True) are stability runs without a reference: the report's
+"Hard cases (stability)" table gives whether each stayed stable, its worst measure over the whole run
+(for SPH, the worst density deviation) and its gates.
+
 Cases live in tools/verification/cases/, one module each; see
 tools/verification/case.py for what a case defines.
 """
@@ -29,6 +33,9 @@ def main():
     parser.add_argument("--out", default=None, help="report folder (default docs/verification, or a scratch folder with --quick)")
     parser.add_argument("--threads", type=int, default=2, help="OpenMP threads per run")
     parser.add_argument("--list", action="store_true", help="list the registered cases and exit")
+    parser.add_argument("--reuse", action="store_true",
+                        help="judge runs already stored under --out (same scene) again without running talus: "
+                             "for new tolerances, gates or report layout")
     args = parser.parse_args()
 
     cases = registry.load_cases()
@@ -50,7 +57,8 @@ def main():
 
     results = []
     for case in cases:
-        results.extend(runner.run_case(case, args.talus, root, out, quick=args.quick, threads=args.threads))
+        results.extend(runner.run_case(case, args.talus, root, out, quick=args.quick, threads=args.threads,
+                                      reuse=args.reuse))
     # Re-running some cases updates an existing report: the other cases keep their stored results.
     all_cases = registry.load_cases()
     if args.case and not args.quick:
@@ -63,7 +71,10 @@ def main():
     for r in known:
         print(f"  KNOWN DEVIATION {r.case} {r.option_label} resolution {r.resolution:g}: {r.failure}")
     for r in failed:
-        print(f"  FAILED {r.case} {r.option_label} resolution {r.resolution:g}: {r.failure}")
+        print(f"  {'UNSTABLE' if r.hard else 'FAILED'} {r.case} {r.option_label} resolution {r.resolution:g}: {r.failure}")
+    hard = [r for r in results if r.hard]
+    if hard:
+        print(f"hard cases: {sum(r.stable for r in hard)} of {len(hard)} runs stable")
     print(f"\n{len(results) - len(failed) - len(known)} passed, {len(failed)} failed, {len(known)} known deviations")
     return 1 if failed else 0
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <string>
 
@@ -187,6 +188,8 @@ void WcsphStage::setup(World& world) {
   }
   verlet_counter_ = 0;
   rates_valid_ = false;
+  worst_deviation_ = max_density_deviation(world);
+  worst_deviation_time_ = world.time;
 }
 
 bool WcsphStage::rates_current(const World& world) const {
@@ -228,6 +231,11 @@ void WcsphStage::advance(World& world, double dt) {
     case Integrator::predictor_corrector: step_two_stage(world, dt); break;
   }
   rates_valid_ = false;  // the state moved; the next step evaluates again
+  const double deviation = max_density_deviation(world);
+  if (deviation > worst_deviation_ || !std::isfinite(deviation)) {
+    worst_deviation_ = deviation;
+    worst_deviation_time_ = world.time + dt;
+  }
 }
 
 double WcsphStage::max_density_deviation(const World& world) const {
@@ -242,38 +250,50 @@ double WcsphStage::max_density_deviation(const World& world) const {
   return dev;
 }
 
-std::string WcsphStage::save_state() const { return std::to_string(verlet_counter_); }
+// Text "COUNTER WORST TIME" (hex floats: a restart continues bit-for-bit); a
+// checkpoint holding only the counter (older runs) keeps the setup's worst value.
+std::string WcsphStage::save_state() const {
+  char text[96];
+  std::snprintf(text, sizeof text, "%llu %a %a", static_cast<unsigned long long>(verlet_counter_), worst_deviation_,
+                worst_deviation_time_);
+  return text;
+}
 
 void WcsphStage::load_state(std::string_view bytes) {
-  verlet_counter_ = bytes.empty() ? 0 : std::stoull(std::string(bytes));
+  const std::string text(bytes);
+  char* end = nullptr;
+  verlet_counter_ = text.empty() ? 0 : std::strtoull(text.c_str(), &end, 10);
+  if (!end || *end == '\0') return;
+  char* after = nullptr;
+  const double worst = std::strtod(end, &after);
+  if (after == end) throw InputError("error: checkpoint: the wcsph stage's state '" + text + "' is not readable");
+  const double when = std::strtod(after, &end);
+  if (end == after) throw InputError("error: checkpoint: the wcsph stage's state '" + text + "' is not readable");
+  worst_deviation_ = worst;
+  worst_deviation_time_ = when;
 }
 
 std::string WcsphStage::status(const World& world) const {
-  char line[96];
-  std::snprintf(line, sizeof line, "rho dev %.2f%%", 100.0 * max_density_deviation(world));
+  char line[128];
+  std::snprintf(line, sizeof line, "rho dev %.3g%% (worst %.3g%% at t = %.4g s)", 100.0 * max_density_deviation(world),
+                100.0 * worst_deviation_, worst_deviation_time_);
   return line;
 }
 
 StagePlan WcsphStage::plan(const World& world) const {
   StagePlan plan;
-  const char* visc = viscosity_ == sph::ViscosityModel::artificial ? "artificial viscosity"
-                     : viscosity_ == sph::ViscosityModel::laminar  ? "laminar viscosity (Morris)"
-                                                                   : "Laplacian-kernel viscosity";
+  const char* visc = per_particle_viscosity_
+                         ? (viscosity_mean_ == sph::ViscosityMean::harmonic
+                                ? "laminar viscosity (Morris, mu_eff, harmonic mean)"
+                                : "laminar viscosity (Morris, mu_eff, arithmetic mean)")
+                     : viscosity_ == sph::ViscosityModel::artificial ? "artificial viscosity"
+                     : viscosity_ == sph::ViscosityModel::laminar    ? "laminar viscosity (Morris)"
+                                                                     : "Laplacian-kernel viscosity";
   std::string force = std::string("fluid-fluid pass: pressure + ") + visc;
   if (density_ == DensityMode::continuity) {
     force += " + continuity";
     if (diffusion_ == Diffusion::molteni) force += " + density diffusion (Molteni)";
     if (diffusion_ == Diffusion::fourtakas) force += " + density diffusion (Fourtakas)";
-  }
-  if (per_particle_viscosity_) {
-    visc = viscosity_mean_ == sph::ViscosityMean::harmonic ? "laminar viscosity (Morris, mu_eff, harmonic mean)"
-                                                          : "laminar viscosity (Morris, mu_eff, arithmetic mean)";
-    force = std::string("fluid-fluid pass: pressure + ") + visc;
-    if (density_ == DensityMode::continuity) {
-      force += " + continuity";
-      if (diffusion_ == Diffusion::molteni) force += " + density diffusion (Molteni)";
-      if (diffusion_ == Diffusion::fourtakas) force += " + density diffusion (Fourtakas)";
-    }
   }
   if (density_ == DensityMode::summation) plan.passes.push_back("fluid-fluid pass: summation density");
   plan.passes.push_back("EOS: one batch call per material");

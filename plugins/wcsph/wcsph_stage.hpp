@@ -40,8 +40,10 @@ class WcsphStage final : public Stage {
   double stable_time_step(const World& world) override;
   void advance(World& world, double dt) override;
   StagePlan plan(const World& world) const override;
+  // "rho dev X% (worst Y% at t = T s)": the current max |rho/rho0 - 1| and its
+  // running maximum over the run (the harness reads both from the summary).
   std::string status(const World& world) const override;
-  // The Verlet step counter is the only state outside the particle store.
+  // The Verlet step counter and the worst density deviation: the state outside the particle store.
   std::string save_state() const override;
   void load_state(std::string_view bytes) override;
 
@@ -50,6 +52,9 @@ class WcsphStage final : public Stage {
   std::uint64_t pair_evaluations() const { return pairs_total_; }  // since setup
   std::uint64_t rate_evaluations() const { return rate_evaluations_; }
   double max_density_deviation(const World& world) const;
+  // Running maximum of max_density_deviation() over the setup state and the end of every step.
+  double worst_density_deviation() const { return worst_deviation_; }
+  double worst_density_deviation_time() const { return worst_deviation_time_; }
 
  private:
   void update_pressure(World& world);
@@ -96,6 +101,7 @@ class WcsphStage final : public Stage {
   // Step state.
   std::uint64_t verlet_counter_ = 0;
   std::uint64_t pairs_total_ = 0, rate_evaluations_ = 0;
+  double worst_deviation_ = 0.0, worst_deviation_time_ = 0.0;  // one O(N) reduction per step, no allocation
   bool rates_valid_ = false;
   std::uint64_t rates_step_ = 0;
   double rates_time_ = 0.0;

@@ -19,7 +19,25 @@ Optional:
               tolerance, not fall. Default True: an error that grows with resolution fails.
   gates(run) -> list of (name, passed, value-text): stability gates (no NaN, mass, ...)
   QUICK_INDEX index of the rung --quick runs (default 0)
+  QUICK_END   simulated end time (s) of the --quick run, a short variant of that rung for costly cases
+              (it must still cover the part of the run the case is about; gates read run.scene)
   KNOWN_DEVIATION  text: the accuracy tolerance is known not to be met yet (an open issue says
                   why). Such a rung is still run, measured and reported as failing its tolerance,
                   but does not fail the harness; its stability gates still must pass.
+
+A hard case (stability only, no reference solution) sets HARD_CASE = True and defines instead:
+
+  HARD_CASE   True
+  NAME, TITLE, SCENE, LADDER (one rung or more: the ladder may be short, a hard case is about a long
+              or violent run, not convergence), configure(scene, resolution, option)
+  STRESSES    one line: what the case stresses (for the report's "Hard cases" table)
+  WORST_LABEL what worst() measures, e.g. "max |rho/rho0 - 1| over the run" (SPH cases: the wcsph
+              stage's running maximum, _util.worst_density_deviation) or the case's own measure
+              (deepest block interpenetration, largest mass error, ...)
+  worst(run) -> float   the worst value of that measure over the whole run (not only at the end)
+  TOLERANCE   dict resolution -> largest acceptable worst() (the run fails above it)
+  gates(run) -> list of (name, passed, value-text): the stability criteria; each must be able to fail
+The case is stable when talus finishes without error, worst() is finite and within TOLERANCE, and
+every gate passes; it is not required to converge. REFERENCE and ERROR_LABEL are not needed (the
+report says "stability only"); error() defaults to worst().
 """
