@@ -8,6 +8,9 @@ packages=(
   libeigen3-dev libboost-dev nlohmann-json3-dev libhdf5-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   python3 python3-numpy python3-matplotlib python3-h5py python3-jsonschema
+  # GDAL headers: the runout plugin reads GeoTIFF DEMs through GDAL (CMake requires it
+  # unless -DTALUS_WITH_GDAL=OFF).
+  libgdal-dev
 )
 
 missing=()

@@ -3,9 +3,13 @@
 // eta = h_p / h = tau_y / tau_b and a = 6 mu v / (tau_y h), the mean speed
 // v = tau_b h / (6 mu) (1 - eta)^2 (2 + eta) becomes the cubic
 //   P3(eta) = eta^3 - (3 + a) eta + 2 = 0,  root sought in (0, 1].
-// Pastor's quadratic approximation (seed eq. 13, coefficients read from
-// Pastor et al.; valid for a in [1e-3, 1e3]):
+// Pastor's quadratic approximation (seed eq. 13, whose printed form is garbled;
+// valid for a in [1e-3, 1e3]):
 //   P2(eta) = 3/2 eta^2 - (57/16 + a) eta + 65/32 = 0,  smaller root.
+// The coefficients are those the seed's tokens show, and they are exactly the
+// minimax quadratic of P3 on [0, 1] (P3 - P2 = T3(2 eta - 1)/32, |P3 - P2| <= 1/32
+// for every a), which supports the reconstruction; the printed equation of
+// Pastor et al. (2004, Geotechnique 54(6)) was not available to check.
 #pragma once
 
 #include <cmath>

@@ -1,6 +1,8 @@
 #include "geotiff.hpp"
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "talus/error.hpp"
 
@@ -14,19 +16,34 @@ namespace talus::runout {
 
 bool geotiff_supported() { return true; }
 
+// Keeps GDAL's own "ERROR n: ..." lines off stderr while reading: its
+// message goes into the InputError instead.
+struct QuietGdal {
+  QuietGdal() { CPLPushErrorHandler(CPLQuietErrorHandler); }
+  ~QuietGdal() { CPLPopErrorHandler(); }
+};
+
 Grid read_geotiff(const std::string& path) {
   GDALAllRegister();
-  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpen(path.c_str(), GA_ReadOnly));
+  const QuietGdal quiet;
+  CPLErrorReset();
+  const unsigned flags = GDAL_OF_RASTER | GDAL_OF_READONLY;  // a vector file is "not a raster", not a crash
+  auto* ds = static_cast<GDALDataset*>(GDALOpenEx(path.c_str(), flags, nullptr, nullptr, nullptr));
   if (!ds) throw InputError("error: " + path + ": GDAL cannot open it as a raster: " + CPLGetLastErrorMsg());
   struct Close {
     GDALDataset* d;
     ~Close() { GDALClose(d); }
   } close{ds};
+  if (ds->GetRasterCount() < 1) throw InputError("error: " + path + ": the raster has no band; a DEM needs one");
   double t[6];
   if (ds->GetGeoTransform(t) != CE_None)
     throw InputError("error: " + path + ": no geotransform; a DEM needs its cell size and origin");
-  if (t[2] != 0.0 || t[4] != 0.0 || std::abs(std::abs(t[5]) - t[1]) > 1e-9 * t[1])
-    throw InputError("error: " + path + ": only north-up rasters with square cells are supported");
+  if (t[2] != 0.0 || t[4] != 0.0)
+    throw InputError("error: " + path + ": the geotransform is rotated (terms " + std::to_string(t[2]) + ", " +
+                     std::to_string(t[4]) + "); only north-up rasters are supported (gdalwarp it first)");
+  if (!(t[1] > 0.0) || std::abs(std::abs(t[5]) - t[1]) > 1e-9 * t[1])
+    throw InputError("error: " + path + ": cells are " + std::to_string(t[1]) + " x " + std::to_string(std::abs(t[5])) +
+                     "; only square cells are supported (resample it first, e.g. gdalwarp -tr)");
   GDALRasterBand* band = ds->GetRasterBand(1);
   Grid g;
   g.cell = t[1];
@@ -58,7 +75,8 @@ bool geotiff_supported() { return false; }
 
 Grid read_geotiff(const std::string& path) {
   throw InputError("error: " + path +
-                   ": GeoTIFF DEMs need GDAL, and this build has none (install libgdal-dev and rebuild), or "
+                   ": GeoTIFF DEMs need GDAL, and this build has none (configured with TALUS_WITH_GDAL=OFF; install "
+                   "libgdal-dev and reconfigure with it ON), or "
                    "convert it: gdal_translate -of AAIGrid DEM.tif DEM.asc");
 }
 
