@@ -7,6 +7,7 @@
 #include <omp.h>
 
 #include "block_pass.hpp"
+#include "fluid_fit.hpp"
 #include "talus/blocks.hpp"
 #include "talus/dda/polyhedron.hpp"
 #include "talus/eos.hpp"
@@ -30,11 +31,21 @@ using sph::wall_density_n;
 
 const FieldInfo block_offset{"block_offset", FieldType::vector, "m", false, true};
 
-// Body-frame lattice points of spacing dp inside the polyhedron, at most
-// `layers` dp deep below one of the faces in `covered` (empty: all faces),
-// centred on the bounding box so that faces a multiple of dp apart get their
-// first layer exactly dp/2 inside.
-std::vector<Vec3> shell_points(const Polyhedron& poly, double dp, int layers, const std::vector<char>& covered) {
+// Body-frame lattice points inside the polyhedron, at most `layers` spacings
+// deep below one of the faces in `covered` (empty: all faces). The lattice
+// fills the bounding box with n_a = round(extent_a / dp) points per axis at
+// spacing extent_a / n_a (within dp/2n_a of dp), so that the first layer lies
+// half a spacing inside both faces of every axis: DBC particles then end
+// exactly on the faces of a box, as the fluid's first row is fitted to end on
+// them (fluid_fit.hpp). A lattice of spacing dp itself, centred, would put it
+// (extent - (n-1) dp)/2 inside: dp/3 for a 0.2 m box at dp 0.03, which made
+// the box look 0.5 dp wider to the fluid and float 11 % high.
+struct Shell {
+  std::vector<Vec3> points;
+  Vec3 spacing;
+};
+
+Shell shell_points(const Polyhedron& poly, double dp, int layers, const std::vector<char>& covered) {
   Vec3 lo = poly.vertices[0], hi = lo;
   for (const Vec3& v : poly.vertices)
     for (int a = 0; a < 3; ++a) {
@@ -42,24 +53,25 @@ std::vector<Vec3> shell_points(const Polyhedron& poly, double dp, int layers, co
       hi[a] = std::max(hi[a], v[a]);
     }
   int n[3];
-  Vec3 start;
+  Vec3 start, step;
   for (int a = 0; a < 3; ++a) {
     const double extent = hi[a] - lo[a];
     n[a] = std::max(1, static_cast<int>(std::lround(extent / dp)));
-    start[a] = lo[a] + 0.5 * (extent - (n[a] - 1) * dp);
+    step[a] = extent > 0.0 ? extent / n[a] : dp;
+    start[a] = lo[a] + 0.5 * step[a];
   }
-  const double depth = layers * dp;
-  std::vector<Vec3> out;
+  const double depth = layers * std::max({step.x, step.y, step.z});
+  Shell out{{}, step};
   for (int k = 0; k < n[2]; ++k)
     for (int j = 0; j < n[1]; ++j)
       for (int i = 0; i < n[0]; ++i) {
-        const Vec3 p{start.x + i * dp, start.y + j * dp, start.z + k * dp};
+        const Vec3 p{start.x + i * step.x, start.y + j * step.y, start.z + k * step.z};
         const double d = dda::plane_distance(poly, p);
         if (!(d < -1e-9 * dp)) continue;  // outside or on the surface
         double below = -1e300;            // depth below the nearest covered face (negative)
         for (std::size_t f = 0; f < poly.normals.size(); ++f)
           if (covered.empty() || covered[f]) below = std::max(below, dot(poly.normals[f], p) - poly.offsets[f]);
-        if (below > -depth) out.push_back(p);
+        if (below > -depth) out.points.push_back(p);
       }
   return out;
 }
@@ -123,10 +135,10 @@ void BlockParticles::bind(World& world, const sph::FluidSettings& settings) {
                              &wall_density_rate, &wall_density_n, &block_offset})
     s.require(*f);
   const BlockSet& b = *world.blocks;
-  const double mass = rho0_ * dp_ * dp_ * dp_;
   begin_.clear();
   end_.clear();
   all_.clear();
+  fitted_ = 0;
   for (std::size_t k = 0; k < blocks_.size(); ++k) {
     const Polyhedron& poly = b.shape[blocks_[k]];
     std::vector<char> covered;
@@ -142,7 +154,11 @@ void BlockParticles::bind(World& world, const sph::FluidSettings& settings) {
                                                                 "\"faces\"");
       }
     }
-    const std::vector<Vec3> points = shell_points(poly, dp_, layers_, covered);
+    // The fluid's first row dp/2 outside the covered faces, as the block's first row is dp/2 inside them.
+    fitted_ += fit_fluid_to_faces(world, blocks_[k], covered, material_);
+    const Shell shell = shell_points(poly, dp_, layers_, covered);
+    const std::vector<Vec3>& points = shell.points;
+    const double mass = rho0_ * shell.spacing.x * shell.spacing.y * shell.spacing.z;  // the volume each one stands for
     if (points.empty())
       world.bodies[bodies_[k]].params.fail("shape", "block '" + names_[k] + "' holds no boundary particle at dp = " +
                                                         std::to_string(dp_) + "; give block_particles a smaller \"dp\"");
@@ -341,7 +357,8 @@ void BlockParticles::describe_passes(StagePlan& plan) const {
     char spacing[32];
     std::snprintf(spacing, sizeof spacing, "%g", dp_);
     plan.notes.push_back("block_particles " + names + ": " + std::to_string(count) + " particles in " +
-                         std::to_string(layers_) + " layers at dp " + spacing + " m");
+                         std::to_string(layers_) + " layers at dp " + spacing + " m; " + std::to_string(fitted_) +
+                         " fluid particles fitted to the faces at the start");
   }
 }
 

@@ -2,8 +2,11 @@
 // Crespo et al. 2007; Domínguez et al. 2022, DualSPHysics "floating" bodies;
 // rock-fluid seed §4, two-way coupling).
 //
-// Each block gets `layers` layers of particles on a lattice of spacing dp
-// inside its faces (first layer dp/2 inside), stored with body-frame offsets
+// Each block gets `layers` layers of particles on a body-frame lattice of
+// spacing ~dp inside its faces (stretched per axis to a whole number of
+// spacings across the block, so the first layer is half a spacing inside the
+// faces of a box; the fluid's first row is fitted to dp/2 outside,
+// fluid_fit.hpp), stored with body-frame offsets
 // p_b; every step they are placed at x_b = X + R p_b with the block's rigid
 // velocity v_b = V + w x (x_b - X). They act on the fluid like DBC walls:
 // density from continuity, drho_b/dt = sum_f m_f (v_b - v_f) . grad W_bf
@@ -42,6 +45,7 @@ class BlockParticles final : public sph::SphBoundary {
   std::size_t particles(std::size_t k) const { return end_[k] - begin_[k]; }
   const ImpulseLedger& ledger() const { return ledger_; }
   std::size_t removed_fluid() const { return removed_; }
+  std::size_t fitted_fluid() const { return fitted_; }
 
  private:
   void place(World& world);
@@ -63,6 +67,7 @@ class BlockParticles final : public sph::SphBoundary {
   double rho0_ = 0.0, dp_ = 0.0;
   int layers_ = 0;
   std::size_t removed_ = 0;
+  std::size_t fitted_ = 0;  // fluid particles moved onto the faces at the start (fluid_fit.hpp)
   sph::FluidSettings settings_;
   std::vector<sph::NeighbourGrid> cells_;           // per block
   std::vector<Vec3> thread_force_, thread_torque_;
