@@ -6,7 +6,9 @@
 //   bench_wcsph --benchmark_filter='/85/'    dp = 0.0085 m, ~171 000 particles
 // Arguments: dp in 1e-4 m, OpenMP threads. Counters: particles (fluid + wall),
 // particle_steps/s, pairs/s (particle-neighbour evaluations, fluid-fluid,
-// fluid-wall and wall-fluid), bytes/particle (peak resident memory).
+// fluid-wall and wall-fluid), bytes/particle (peak resident memory of the run
+// above the process's own, which holds the libraries), field_bytes/particle
+// (the particle fields alone; the rest is stage scratch and neighbour grids).
 // Reference (DualSPHysics 5.4 CPU, 2 threads, dp = 0.0085): 0.36 M particle-steps/s,
 // ~63 M particle-neighbour evaluations/s, ~131 bytes per particle.
 #include <benchmark/benchmark.h>
@@ -20,17 +22,36 @@
 
 namespace {
 
-double peak_resident_bytes() {
+// Resident memory from /proc/self/status: "VmHWM:" (peak) or "VmRSS:" (now).
+double resident_bytes(const std::string& key) {
   std::ifstream in("/proc/self/status");
   std::string line;
   while (std::getline(in, line))
-    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) * 1024.0;
+    if (line.rfind(key, 0) == 0) return std::stod(line.substr(key.size())) * 1024.0;
   return 0.0;
+}
+
+// Restarts the peak count (Linux >= 4.0), so each benchmark sees its own peak.
+void reset_peak_resident() { std::ofstream("/proc/self/clear_refs") << "5"; }
+
+// Bytes of the particle stores' fields (fluid and wall), without the stage's
+// scratch arrays, the neighbour grids or the process itself.
+double store_bytes(const talus::ParticleStore& store) {
+  double bytes = 0.0;
+  for (const talus::FieldInfo& f : store.fields()) {
+    const double each = f.type == talus::FieldType::vector    ? sizeof(talus::Vec3)
+                        : f.type == talus::FieldType::integer ? sizeof(std::int32_t)
+                                                              : 8.0;  // scalar (double) or id (uint64)
+    bytes += each * static_cast<double>(store.size());
+  }
+  return bytes;
 }
 
 void dam_break_3d(benchmark::State& state) {
   const double dp = state.range(0) * 1e-4;
   omp_set_num_threads(static_cast<int>(state.range(1)));
+  reset_peak_resident();
+  const double baseline = resident_bytes("VmRSS:");  // the process before the world exists
   sph_test::SphWorld s(3, {0, 0, 0}, {1.6, 0.67, 0.4}, dp, 1.7320508, "cubic_spline");
   const int water = s.water(20.0 * std::sqrt(9.81 * 0.3));
   s.fluid_box(water, {0, 0, 0}, {0.4, 0.67, 0.3}, true);
@@ -51,7 +72,8 @@ void dam_break_3d(benchmark::State& state) {
   state.counters["particle_steps/s"] = benchmark::Counter(particles * steps, benchmark::Counter::kIsRate);
   state.counters["pairs/s"] = benchmark::Counter(pairs, benchmark::Counter::kIsRate);
   state.counters["neighbours"] = pairs / (particles * steps);
-  state.counters["bytes/particle"] = peak_resident_bytes() / particles;
+  state.counters["bytes/particle"] = (resident_bytes("VmHWM:") - baseline) / particles;
+  state.counters["field_bytes/particle"] = (store_bytes(s.world.fluid) + store_bytes(s.world.boundary)) / particles;
   state.counters["sim_time"] = s.world.time;
 }
 

@@ -6,6 +6,10 @@
 
 #define TALUS_API __attribute__((visibility("default")))
 
+// For functions of a pair loop body (SPH pair terms, kernel lookups): the
+// compiler otherwise keeps one call per term per pair at -O2/-O3.
+#define TALUS_PAIR_INLINE [[gnu::always_inline]] inline
+
 namespace talus {
 
 using Real = double;  // SI units, double precision (DESIGN.md principle 6)

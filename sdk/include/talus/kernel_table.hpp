@@ -26,10 +26,10 @@ class TALUS_API KernelTable {
   double support() const { return support_; }             // in units of h
 
   // W(r) in 1/m^dim.
-  double w(double r) const { return lookup(w_, r); }
+  TALUS_PAIR_INLINE double w(double r) const { return lookup(w_, r); }
   // dW/dr in 1/m^(dim+1) (negative inside the support). The gradient of W
   // with respect to x_i for a pair is dw(r) * (x_i - x_j) / r.
-  double dw(double r) const { return lookup(dw_, r); }
+  TALUS_PAIR_INLINE double dw(double r) const { return lookup(dw_, r); }
   // dW/dr / r: what a pair loop multiplies (x_i - x_j) by. Finite at r = 0.
   double dw_over_r(double r) const { return r > 1e-12 * h_ ? dw(r) / r : 0.0; }
   // Laplacian-kernel value (0 unless the kernel has one).
@@ -38,7 +38,7 @@ class TALUS_API KernelTable {
   double w0() const { return w_[0]; }  // W(0), the self contribution
 
  private:
-  double lookup(const std::vector<double>& t, double r) const {
+  TALUS_PAIR_INLINE double lookup(const std::vector<double>& t, double r) const {
     const double s = r * inv_dr_;
     const int k = static_cast<int>(s);
     if (k >= size_) return 0.0;

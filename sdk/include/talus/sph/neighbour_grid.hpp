@@ -79,7 +79,7 @@ class NeighbourGrid {
 
   // `pos` is unused (the grid keeps its own copy); kept for CellList's signature.
   template <class F>
-  void for_each_neighbour(const Vec3& x, std::span<const Vec3> /*pos*/, double radius, F&& f) const {
+  TALUS_PAIR_INLINE void for_each_neighbour(const Vec3& x, std::span<const Vec3> /*pos*/, double radius, F&& f) const {
     if (periodic_[0] || periodic_[1] || periodic_[2])
       query<true>(x, radius, f);
     else
@@ -88,7 +88,7 @@ class NeighbourGrid {
 
  private:
   template <bool Periodic, class F>
-  void query(const Vec3& x, double radius, F& f) const {
+  TALUS_PAIR_INLINE void query(const Vec3& x, double radius, F& f) const {
     const double r2max = radius * radius;
     const int reach = 2;  // cells are at least half the build radius; queries use at most that radius
     int c[3];
@@ -146,7 +146,7 @@ class NeighbourGrid {
     int count = 0;
   };
   template <bool Periodic, class F>
-  void flush(Hits& h, const Vec3& x, F& f) const {
+  TALUS_PAIR_INLINE void flush(Hits& h, const Vec3& x, F& f) const {
     for (int k = 0; k < h.count; ++k) {
       const Index s = h.s[k];
       Vec3 q = x;
@@ -168,19 +168,25 @@ class NeighbourGrid {
   // Tests the sorted points of cells [c0, c1) without a branch on the
   // outcome; flushes full chunks to f.
   template <bool Periodic, class F>
-  void scan(std::size_t c0, std::size_t c1, const Vec3& x, int image, double r2max, Hits& hits, F& f) const {
+  TALUS_PAIR_INLINE void scan(std::size_t c0, std::size_t c1, const Vec3& x, int image, double r2max, Hits& hits, F& f) const {
     const Index e = cell_start_[c1];
     Vec3 q = x;
     if constexpr (Periodic) q -= hits.shift[image];
+    // The count lives in a register: kept in `hits`, every candidate would wait on a store and reload.
+    int count = hits.count;
     for (Index s = cell_start_[c0]; s < e; ++s) {
       const double dx = q.x - xs_[s], dy = q.y - ys_[s], dz = q.z - zs_[s];
       const double r2 = dx * dx + dy * dy + dz * dz;
-      const int k = hits.count;
-      hits.s[k] = s;
-      if constexpr (Periodic) hits.image[k] = static_cast<std::uint8_t>(image);
-      hits.count = k + (r2 < r2max ? 1 : 0);
-      if (hits.count == chunk) flush<Periodic>(hits, x, f);
+      hits.s[count] = s;
+      if constexpr (Periodic) hits.image[count] = static_cast<std::uint8_t>(image);
+      count += r2 < r2max ? 1 : 0;
+      if (count == chunk) {
+        hits.count = count;
+        flush<Periodic>(hits, x, f);
+        count = 0;
+      }
     }
+    hits.count = count;
   }
 
   // Distance along axis a from v to the slab of (unwrapped) cell k; 0 inside.

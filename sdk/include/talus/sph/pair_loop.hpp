@@ -55,7 +55,7 @@ inline constexpr Sets other_set = Sets::different;
 
 namespace detail {
 template <class Sums, class... Terms>
-inline void apply_terms(const Pair& p, Sums& sums, const Terms&... terms) {
+TALUS_PAIR_INLINE void apply_terms(const Pair& p, Sums& sums, const Terms&... terms) {
   (terms.pair(p, sums), ...);
 }
 }  // namespace detail
@@ -79,7 +79,8 @@ std::uint64_t pair_pass(std::size_t n, std::span<const Vec3> xa, const Grid& cel
     const Index i = static_cast<Index>(ii);
     auto sums = start(i);
     std::uint64_t count = 0;
-    cells.for_each_neighbour(xa[i], xb, radius, [&](Index j, const Vec3& dx, double r2) {
+    // Inlined into the scan (with TALUS_PAIR_INLINE terms): the terms of a pass become straight-line code.
+    cells.for_each_neighbour(xa[i], xb, radius, [&](Index j, const Vec3& dx, double r2) __attribute__((always_inline)) {
       if (skip_self && j == i) return;
       Pair p;
       p.j = j;
