@@ -48,7 +48,7 @@ struct WallFields {
 
 sph::Neighbours fluid_neighbours(const sph::FluidView& f) {
   return {f.velocity.data(), f.density.data(), f.pressure.data(), f.sound_speed.data(), f.mass.data(),
-          f.material.data()};
+          f.material.data(), f.inv_density.data()};
 }
 
 // The wall material: the body's "material", else the only fluid material.
@@ -78,6 +78,7 @@ struct VelocityShepard {
 // What a wall particle sums over its fluid neighbours.
 struct WallSums {
   Vec3 v;             // v_b, the wall's own velocity (continuity)
+  double rho = 0.0;   // rho_b (continuity)
   double drho = 0.0;  // continuity
   double wsum = 0.0;  // Shepard weights
   Vec3 vsum;          // Shepard-weighted fluid velocity
@@ -250,7 +251,7 @@ void DynamicParticles::interact(World& world, const sph::FluidView& fluid, const
 
   // Wall side first: continuity of each wall particle with its fluid neighbours
   // and, for the extrapolated no-slip, the mirrored velocity v_b* = 2 v_b - v~_b.
-  auto wstart = [&](Index b) { return WallSums{w.v[b], 0.0, 0.0, Vec3{}}; };
+  auto wstart = [&](Index b) { return WallSums{w.v[b], w.rho[b], 0.0, 0.0, Vec3{}}; };
   auto wfinish = [&](Index b, const WallSums& s) { w.drho[b] = s.drho; };
   auto wfinish_mirror = [&](Index b, const WallSums& s) {
     w.drho[b] = s.drho;
@@ -298,7 +299,7 @@ void DynamicParticles::interact(World& world, const sph::FluidView& fluid, const
       break;
     case sph::ViscosityModel::laminar:
       pairs += sph::pair_pass(nf, fluid.position, cells_, wx, kernel, sph::other_set, start, finish, pressure,
-                              sph::LaminarViscosity<true>{visc_nb, mu}, cont);
+                              sph::LaminarViscosity<true>{visc_nb, mu, sph::laminar_eta2(kernel.h())}, cont);
       break;
     case sph::ViscosityModel::laplacian:
       pairs += sph::pair_pass(nf, fluid.position, cells_, wx, kernel, sph::other_set, start, finish, pressure,

@@ -38,6 +38,7 @@ std::uint64_t run_force_pass(const PassContext& ctx, const Terms&... terms) {
     s.c = f.c[i];
     s.mu = mu ? mu[f.mat[i]] : ctx.nb.viscosity[i];
     s.kh = ctx.nb.rho_over_c2[i];
+    s.mat = f.mat[i];
     return s;
   };
   auto finish = [&](Index i, const sph::FluidSums& s) {
@@ -94,9 +95,9 @@ std::uint64_t WcsphStage::fluid_pass(World& world) {
     const PassContext pctx{world, f, cells_, nullptr, world.gravity, nb};
     if (viscosity_mean_ == sph::ViscosityMean::harmonic)
       return with_density_terms(pctx, density_, diffusion_, delta_h_c0, pressure,
-                                sph::LaminarViscosityField<sph::ViscosityMean::harmonic>{nb});
+                                sph::LaminarViscosityField<sph::ViscosityMean::harmonic>{nb, sph::laminar_eta2(h_)});
     return with_density_terms(pctx, density_, diffusion_, delta_h_c0, pressure,
-                              sph::LaminarViscosityField<sph::ViscosityMean::arithmetic>{nb});
+                              sph::LaminarViscosityField<sph::ViscosityMean::arithmetic>{nb, sph::laminar_eta2(h_)});
   }
   switch (viscosity_) {
     case sph::ViscosityModel::artificial:
@@ -104,7 +105,7 @@ std::uint64_t WcsphStage::fluid_pass(World& world) {
                                 sph::ArtificialViscosity{nb, alpha_ * h_});
     case sph::ViscosityModel::laminar:
       return with_density_terms(ctx, density_, diffusion_, delta_h_c0, pressure,
-                                sph::LaminarViscosity<false>{nb, material_mu_.data()});
+                                sph::LaminarViscosity<false>{nb, material_mu_.data(), sph::laminar_eta2(h_)});
     case sph::ViscosityModel::laplacian:
       return with_density_terms(ctx, density_, diffusion_, delta_h_c0, pressure,
                                 sph::LaplacianViscosity{nb, &world.kernel});
@@ -148,6 +149,7 @@ void WcsphStage::compute_rates(World& world) {
   }
   pairs_total_ += fluid_pass(world);
   sph::FluidView view{&cells_, f.x, f.v, f.rho, f.p, f.c, f.m, f.mat};
+  view.inv_density = inv_rho_;
   if (per_particle_viscosity_) view.viscosity = world.fluid.scalar("mu_eff");
   const sph::FluidRates rates{f.a, f.drho, f.visc};
   for (sph::SphBoundary* wall : walls_) {

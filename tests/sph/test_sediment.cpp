@@ -85,11 +85,10 @@ TEST(SedimentBed, MaxViscosityBoundsTheViscousStep) {
   EXPECT_LT(dt_uncapped, 0.1 * dt_capped) << "uncapped dt " << dt_uncapped << ", capped " << dt_capped;
 }
 
-// DISABLED until the multiphase continuity term lands in sdk/include/talus/sph/fluid_terms.hpp
-// (drho_i/dt = rho_i sum_j m_j/rho_j v_ij . grad W, Colagrossi & Landrini 2003): with the single-phase form
-// sum_j m_j v_ij . grad W this bed blows up within 0.5 s (worst density deviation 98 %, measured 2026-11-22);
-// with the multiphase form it stays at rest (0.23 %, sediment speed < 1 mm/s). Enable it with that change.
-TEST(SedimentBed, DISABLED_FlatBedUnderStillWaterStaysAtRestAndUnyielded) {
+// Needs the multiphase continuity form drho_i/dt = rho_i sum_j m_j/rho_j v_ij . grad W (Colagrossi &
+// Landrini 2003, sph/fluid_terms.hpp): with Monaghan's sum_j m_j v_ij . grad W this bed blew up within 0.5 s
+// (worst density deviation 98 %, measured 2026-11-22); with it the bed stays at rest.
+TEST(SedimentBed, FlatBedUnderStillWaterStaysAtRestAndUnyielded) {
   Bed bed(true);
   auto& s = bed.s;
   const auto ids0 = s.world.fluid.ids();

@@ -23,6 +23,11 @@ ERROR_LABEL = "relative error of the steady centre velocity against the exact re
 REFERENCE = ("steady HBP plane Poiseuille flow by quadrature: tau = rho F s = tau_y (1 - exp(-m gd)) + K gd, "
              "u(s) = int_s^H gd; ideal Bingham u_c = rho F (H - s0)^2 / (2 mu_p)")
 QUICK_INDEX = 2
+KNOWN_DEVIATION = ("at L/20 the m = 1000 centre velocity is 4.6 % below the regularised solution (SPH 6.199e-6 against "
+                   "6.5e-6 m/s, 2026-11-22) since the laminar operator's regularisation became eta^2 = 1e-4 h^2; with "
+                   "0.01 h^2 it read 0.87 %, flattered by that operator's 1.2 % low viscosity (see poiseuille_2d). The "
+                   "Bingham channel at m = 2000 stays within 3 % (1.8 %). A finer rung (L/30, ~20 min here) is needed "
+                   "to show whether m = 1000 converges to the 3 %.")
 
 
 def regularised_centre_velocity(m, n=4000):

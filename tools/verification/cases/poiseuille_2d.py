@@ -16,17 +16,10 @@ REFERENCE = "Morris, Fox & Zhu (1997) J. Comput. Phys. 136, series solution, nu 
 NU, L, F = 1e-6, 1e-3, 2e-4
 TIMES = [0.0225, 0.0675, 0.1125, 0.225]
 QUICK_INDEX = 1
-# Measured (2026-11-22, walls with the default extrapolated no-slip): 1.62 % / 1.25 % / 1.16 % at L/20, L/40, L/80
-# (it was 14 % / 7.6 % / 4.3 % with the wall particles' own velocity in the viscous term). The early-time error
-# falls with resolution (0.0225 s: 1.33 %, 0.49 %, 0.30 %), the late-time error does not: it grows with t like a
-# viscosity 1.2 % too low, which is what eta^2 = 0.01 h^2 in 1/(r^2 + eta^2) of the Morris operator costs on the
-# lattice (computed: 1.25 % at h/dp = 1.5). With eta^2 = 1e-6 h^2 (a private build) the same ladder gives
-# 1.18 % / 0.34 % / 0.23 %.
-KNOWN_DEVIATION = ("about 1.2 %, not falling with resolution: the Morris viscous operator in sph/fluid_terms.hpp is "
-                   "regularised with eta^2 = 0.01 h^2 (sph/pair_loop.hpp's inv_r2e), a fixed -1.25 % bias of the "
-                   "viscosity at h/dp = 1.5. The wall's first-order error is gone (extrapolated no-slip). With a "
-                   "smaller eta^2 (1e-6 h^2) for the laminar terms the ladder measures 1.18 % / 0.34 % / 0.23 %; "
-                   "the rheology issue stays open on this SDK change.")
+# Measured (2026-11-22): 1.18 % / 0.35 % / 0.24 % at L/20, L/40, L/80 with the extrapolated no-slip wall and the
+# laminar operator regularised by eta^2 = 1e-4 h^2 (sph::laminar_eta2). History: 14 / 7.6 / 4.3 % with the wall
+# particles' own velocity in the viscous term (no-slip ~0.7 dp behind the wall, first order); 1.62 / 1.25 / 1.16 %
+# with the extrapolated wall but eta^2 = 0.01 h^2 (a fixed -1.25 % bias of the viscosity at h/dp = 1.5).
 
 
 def analytic(y, t, terms=60):

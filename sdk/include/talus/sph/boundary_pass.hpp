@@ -63,6 +63,7 @@ struct FluidView {
   // FluidSettings::material_mu holds). A wall's laminar term should then use
   // mu_eff[i] for the fluid particle i (no-slip: mu_wall = mu_i).
   std::span<const double> viscosity;
+  std::span<const double> inv_density;  // 1/rho per fluid particle (continuity of a wall against the fluid)
 };
 
 // The fluid's rates; a boundary adds to them (never overwrites).
