@@ -263,7 +263,8 @@ void BlockParticles::interact(World& world, const sph::FluidView& fluid, const s
   const bool continuity = !settings_.summation_density;
   // The block-side pass uses continuity only (velocity and mass of the fluid).
   const sph::Neighbours fluid_nb{fluid.velocity.data(), fluid.density.data(), fluid.pressure.data(),
-                                 fluid.sound_speed.data(), fluid.mass.data(), fluid.material.data()};
+                                 fluid.sound_speed.data(), fluid.mass.data(), fluid.material.data(),
+                                 fluid.inv_density.data()};
   std::uint64_t pairs = 0;
   for (std::size_t k = 0; k < blocks_.size(); ++k) {
     const std::size_t first = begin_[k], count = end_[k] - begin_[k];
@@ -284,7 +285,7 @@ void BlockParticles::interact(World& world, const sph::FluidView& fluid, const s
                             cont);
         break;
       case sph::ViscosityModel::laminar:
-        pairs += block_pass(in, pressure, sph::LaminarViscosity<true>{nb, mu}, cont);
+        pairs += block_pass(in, pressure, sph::LaminarViscosity<true>{nb, mu, sph::laminar_eta2(kernel.h())}, cont);
         break;
       case sph::ViscosityModel::laplacian:
         pairs += block_pass(in, pressure, sph::LaplacianViscosity{nb, &kernel}, cont);
@@ -300,9 +301,10 @@ void BlockParticles::interact(World& world, const sph::FluidView& fluid, const s
     // Block side: continuity of each block particle with its fluid neighbours.
     struct WallSums {
       Vec3 v;
+      double rho = 0.0;
       double drho = 0.0;
     };
-    auto wstart = [&](Index q) { return WallSums{v[first + q], 0.0}; };
+    auto wstart = [&](Index q) { return WallSums{v[first + q], rho[first + q], 0.0}; };
     auto wfinish = [&](Index q, const WallSums& sum) { drho[first + q] = sum.drho; };
     pairs += sph::pair_pass(count, xb, *fluid.cells, fluid.position, kernel, sph::other_set, wstart, wfinish,
                             sph::Continuity{fluid_nb});
