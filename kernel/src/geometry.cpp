@@ -40,6 +40,14 @@ void declare_shape(ParamSet& body) {
   cylinder.real("height").unit("m").greater_than(0.0).doc("length along the axis");
   b.alternative("cylinder", cylinder);
 
+  ParamSet polygon{"polygon", "simple polygon in the x-y plane (2D domains: a release area, a plan-view region)"};
+  polygon.vector_list("vertices").unit("m").doc("corners in order (either sense); the last joins the first");
+  polygon.check([](const ParamValues& v, Diagnostics& d) {
+    const auto pts = v.vectors("vertices");
+    if (pts.size() < 3) d.error(v, "vertices", "a polygon needs at least 3 corners, got " + std::to_string(pts.size()));
+  });
+  b.alternative("polygon", polygon);
+
   ParamSet half{"half_space", "everything in the domain behind a plane"};
   half.vector("point").unit("m").doc("a point on the plane");
   half.vector("normal").doc("outward normal: the body is on the side opposite to it");
@@ -142,6 +150,41 @@ Solid solid(const std::string& alt, const ParamValues& v, int dim, const Vec3& d
     return {base - e, base + e,
             [=](const Vec3& p) { const double s = dot(p - base, axis); return s >= 0 && s <= len && radial(p) < r; },
             [=](const Vec3& p) { const double s = dot(p - base, axis); return std::min({s, len - s, r - radial(p)}); }};
+  }
+  if (alt == "polygon") {
+    if (dim != 2) v.fail("", "a polygon is a plan-view shape for 2D domains (use a mesh or polyhedron in 3D)");
+    const std::vector<Vec3> c = v.vectors("vertices");
+    Vec3 lo = c[0], hi = c[0];
+    double twice_area = 0.0;
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      const Vec3& a = c[k];
+      const Vec3& b = c[(k + 1) % c.size()];
+      twice_area += a.x * b.y - b.x * a.y;
+      for (int ax = 0; ax < 2; ++ax) {
+        lo[ax] = std::min(lo[ax], a[ax]);
+        hi[ax] = std::max(hi[ax], a[ax]);
+      }
+    }
+    if (!(std::abs(twice_area) > 0.0)) v.fail("vertices", "the polygon has no area (collinear corners)");
+    // Even-odd rule: a horizontal ray from p crosses the boundary an odd number of times.
+    auto inside = [c](const Vec3& p) {
+      bool in = false;
+      for (std::size_t k = 0, m = c.size() - 1; k < c.size(); m = k++)
+        if ((c[k].y > p.y) != (c[m].y > p.y) &&
+            p.x < c[m].x + (p.y - c[m].y) * (c[k].x - c[m].x) / (c[k].y - c[m].y))
+          in = !in;
+      return in;
+    };
+    auto edge_distance = [c](const Vec3& p) {
+      double d = 1e300;
+      for (std::size_t k = 0; k < c.size(); ++k) {
+        const Vec3 a = c[k], e = c[(k + 1) % c.size()] - a;
+        const double t = std::clamp(dot(p - a, e) / dot(e, e), 0.0, 1.0);
+        d = std::min(d, norm(p - (a + e * t)));
+      }
+      return d;
+    };
+    return {lo, hi, inside, edge_distance};
   }
   if (alt == "half_space") {
     const Vec3 x0 = v.vector("point");

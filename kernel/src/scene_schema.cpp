@@ -10,8 +10,8 @@ namespace talus {
 
 namespace {
 
-const std::vector<std::string> fluid_shapes = {"box", "sphere", "cylinder", "half_space", "mesh"};
-const std::vector<std::string> wall_shapes = {"box", "sphere", "cylinder", "half_space", "box_walls", "mesh"};
+const std::vector<std::string> fluid_shapes = {"box", "sphere", "cylinder", "polygon", "half_space", "mesh"};
+const std::vector<std::string> wall_shapes = {"box", "sphere", "cylinder", "polygon", "half_space", "box_walls", "mesh"};
 const std::vector<std::string> block_shapes = {"box", "wedge", "tetrahedron", "polyhedron", "mesh"};
 
 ParamSet domain_params() {

@@ -55,6 +55,39 @@ TEST(Geometry, BoxWallsCannotBeFilled) {
   EXPECT_THROW(fill_points("box_walls", b.alternative_values("shape"), 0.1, 2, {}, {}), InputError);
 }
 
+// An L-shaped release area: the unit square without its upper-right quarter.
+constexpr const char* l_shape = R"({"shape": {"polygon": {"vertices": [[0, 0], [1, 0], [1, 0.5], [0.5, 0.5],
+                                                                        [0.5, 1], [0, 1]]}}})";
+
+TEST(Geometry, PolygonIsFilledInsideItsCornersOnly) {
+  const ParamValues b = shape(l_shape, 2);
+  const double dp = 0.05;
+  const auto pts = fill_points("polygon", b.alternative_values("shape"), dp, 2, {}, {});
+  // Lattice-aligned: the area 0.75 holds exactly 0.75 / dp^2 particles.
+  EXPECT_EQ(pts.size(), 300u);
+  for (const auto& p : pts) EXPECT_FALSE(p.x > 0.5 && p.y > 0.5) << "particle in the notch at " << p.x << ", " << p.y;
+  // The same corners in the other sense give the same points.
+  const ParamValues r = shape(R"({"shape": {"polygon": {"vertices": [[0, 1], [0.5, 1], [0.5, 0.5], [1, 0.5],
+                                                                       [1, 0], [0, 0]]}}})", 2);
+  EXPECT_EQ(fill_points("polygon", r.alternative_values("shape"), dp, 2, {}, {}).size(), pts.size());
+}
+
+TEST(Geometry, PolygonWallLayersFollowItsEdges) {
+  const ParamValues b = shape(l_shape, 2);
+  const auto pts = wall_points("polygon", b.alternative_values("shape"), 0.05, 2, 1, {}, {});
+  // One layer inside the boundary: the perimeter (4) in units of dp, minus the outer corners counted twice,
+  // plus the re-entrant corner's extra particle: 80 - 5 + 1.
+  EXPECT_EQ(pts.size(), 76u);
+}
+
+TEST(Geometry, PolygonNeedsThreeCornersAnAreaAndA2dDomain) {
+  EXPECT_THROW(shape(R"({"shape": {"polygon": {"vertices": [[0, 0], [1, 0]]}}})", 2), InputError);
+  const ParamValues flat = shape(R"({"shape": {"polygon": {"vertices": [[0, 0], [1, 0], [2, 0]]}}})", 2);
+  EXPECT_THROW(fill_points("polygon", flat.alternative_values("shape"), 0.1, 2, {}, {}), InputError);
+  const ParamValues in3d = shape(R"({"shape": {"polygon": {"vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]}}})", 3);
+  EXPECT_THROW(fill_points("polygon", in3d.alternative_values("shape"), 0.1, 3, {}, {}), InputError);
+}
+
 TEST(Mesh, ObjCubeContainsAndMeasures) {
   const std::string path = std::string(TALUS_BINARY_DIR) + "/tests/cube_test.obj";
   test::write_file(path,
