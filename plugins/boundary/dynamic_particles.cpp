@@ -231,8 +231,6 @@ void DynamicParticles::update_pressure(World& world) {
   auto c = s.scalar("sound_speed");
   for (std::size_t m = 0; m < by_material_.size(); ++m)
     if (!by_material_[m].empty()) world.materials[m].eos->pressure(by_material_[m], rho.data(), p.data(), c.data());
-  inv_rho_.resize(count_);
-  for (std::size_t b = 0; b < count_; ++b) inv_rho_[b] = 1.0 / rho[first_ + b];
 }
 
 void DynamicParticles::begin_step(World& world) {
@@ -244,6 +242,9 @@ void DynamicParticles::interact(World& world, const sph::FluidView& fluid, const
   WallFields w(world.boundary, first_, count_);
   if (moves_) cells_.build(w.x);
   const KernelTable& kernel = *settings_.kernel;
+  // 1/rho from the current density (also right after a restart, which loads the density only).
+  inv_rho_.resize(count_);
+  for (std::size_t b = 0; b < count_; ++b) inv_rho_[b] = 1.0 / w.rho[b];
   sph::Neighbours wall_nb = w.neighbours();
   wall_nb.inv_density = inv_rho_.data();
   const double* mu = settings_.material_mu.data();

@@ -68,7 +68,7 @@ class DynamicParticles final : public sph::SphBoundary {
   bool moves_ = false;
   sph::FluidSettings settings_;
   sph::NeighbourGrid cells_;
-  std::vector<double> inv_rho_;  // 1/rho of my wall particles, refreshed with their pressure
+  std::vector<double> inv_rho_;  // scratch: 1/rho of my wall particles, refreshed by every interact()
   NoSlip no_slip_ = NoSlip::extrapolated;
   bool mirror_ = false;           // no_slip extrapolated and a viscous term that uses it (laminar, Laplacian)
   std::vector<Vec3> noslip_v_;    // scratch: v_b* of my wall particles, refilled by every interact()
