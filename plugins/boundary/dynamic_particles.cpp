@@ -46,11 +46,6 @@ struct WallFields {
   sph::Neighbours neighbours() const { return {v.data(), rho.data(), p.data(), c.data(), m.data(), mat.data()}; }
 };
 
-sph::Neighbours fluid_neighbours(const sph::FluidView& f) {
-  return {f.velocity.data(), f.density.data(), f.pressure.data(), f.sound_speed.data(), f.mass.data(),
-          f.material.data(), f.inv_density.data()};
-}
-
 // The wall material: the body's "material", else the only fluid material.
 int wall_material(const World& world, const Body& body) {
   if (body.material >= 0) return body.material;
@@ -260,7 +255,7 @@ void DynamicParticles::interact(World& world, const sph::FluidView& fluid, const
     noslip_v_[b] = s.wsum > 0.0 ? w.v[b] * 2.0 - s.vsum * (1.0 / s.wsum) : w.v[b];
   };
   const std::span<const Vec3> wx = w.x;
-  const sph::Continuity wall_cont{fluid_neighbours(fluid)};
+  const sph::Continuity wall_cont{fluid.neighbours()};
   std::uint64_t pairs = 0;
   if (mirror_) {
     if (noslip_v_.size() != count_) noslip_v_.resize(count_);

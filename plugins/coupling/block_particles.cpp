@@ -261,10 +261,8 @@ void BlockParticles::interact(World& world, const sph::FluidView& fluid, const s
   auto drho = s.scalar("density_rate");
   const double* mu = settings_.material_mu.data();
   const bool continuity = !settings_.summation_density;
-  // The block-side pass uses continuity only (velocity and mass of the fluid).
-  const sph::Neighbours fluid_nb{fluid.velocity.data(), fluid.density.data(), fluid.pressure.data(),
-                                 fluid.sound_speed.data(), fluid.mass.data(), fluid.material.data(),
-                                 fluid.inv_density.data()};
+  // The block-side pass uses continuity only (velocity and volume of the fluid).
+  const sph::Neighbours fluid_nb = fluid.neighbours();
   std::uint64_t pairs = 0;
   for (std::size_t k = 0; k < blocks_.size(); ++k) {
     const std::size_t first = begin_[k], count = end_[k] - begin_[k];

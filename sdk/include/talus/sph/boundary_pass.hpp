@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "talus/boundary.hpp"
+#include "talus/sph/fluid_terms.hpp"
 #include "talus/sph/neighbour_grid.hpp"
 #include "talus/kernel_table.hpp"
 #include "talus/stage.hpp"
@@ -64,6 +65,12 @@ struct FluidView {
   // mu_eff[i] for the fluid particle i (no-slip: mu_wall = mu_i).
   std::span<const double> viscosity;
   std::span<const double> inv_density;  // 1/rho per fluid particle (continuity of a wall against the fluid)
+
+  // The fluid as the neighbour set of a wall-side pass.
+  Neighbours neighbours() const {
+    return {velocity.data(), density.data(),     pressure.data(), sound_speed.data(), mass.data(),
+            material.data(), inv_density.data(), nullptr /* rho/c^2 */, viscosity.data()};
+  }
 };
 
 // The fluid's rates; a boundary adds to them (never overwrites).
