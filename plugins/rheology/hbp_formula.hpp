@@ -31,10 +31,17 @@ inline double power_law_viscosity(double k, double n, double gd, double gd_min) 
 // Pressure-dependent yield stress (coastline seed Table 3: cohesion c, friction
 // angle phi), with the compressive pressure p >= 0 (no tensile strength beyond c):
 //   Mohr-Coulomb:    tau_y = c + p tan(phi)
-//   Drucker-Prager:  tau_y = sqrt(3) (kappa_c + alpha_phi p), the von Mises
-//     equivalent shear stress of the cone matched to Mohr-Coulomb in plane
-//     strain, alpha_phi = tan(phi)/sqrt(9 + 12 tan^2 phi), kappa_c =
-//     3 c/sqrt(9 + 12 tan^2 phi) (Fourtakas & Rogers 2016, Adv. Water Resour. 92, eq. 22).
+//   Drucker-Prager:  tau_y = kappa_c + alpha_phi I1 = kappa_c + 3 alpha_phi p,
+//     the cone sqrt(J2) = kappa_c + alpha_phi I1 (I1 = 3p) matched to
+//     Mohr-Coulomb in plane strain, alpha_phi = tan(phi)/sqrt(9 + 12 tan^2 phi),
+//     kappa_c = 3 c/sqrt(9 + 12 tan^2 phi) (Drucker & Prager 1952; the form
+//     Fourtakas & Rogers 2016, Adv. Water Resour. 92, use for sediment).
+//     tau_y is compared with mu gd, and mu gd = sqrt(J2) of the viscous stress
+//     2 mu D, so tau_y is the cone's sqrt(J2) itself: at phi = 35 deg,
+//     tau_y = 0.78 c + 0.545 p, i.e. a critical infinite slope of 28.6 deg.
+//     (An extra factor sqrt(3), the von Mises sqrt(3 J2), would halve the
+//     friction to 0.31 p, a critical slope of 17.5 deg: measured, a bank's core
+//     under its phi-lines then fails.)
 enum class YieldModel { constant, mohr_coulomb, drucker_prager };
 
 struct YieldStress {
@@ -57,8 +64,8 @@ struct YieldStress {
       y.slope = t;
     } else {
       const double s = std::sqrt(9.0 + 12.0 * t * t);
-      y.offset = std::sqrt(3.0) * 3.0 * c / s;
-      y.slope = std::sqrt(3.0) * t / s;
+      y.offset = 3.0 * c / s;
+      y.slope = 3.0 * t / s;
     }
     return y;
   }

@@ -156,6 +156,7 @@ void WcsphStage::compute_rates(World& world) {
     wall->interact(world, view, rates);
     pairs_total_ += wall->pair_count();
   }
+  if (point_implicit_) scale_stiff_particles(world);
   ++rate_evaluations_;
   rates_valid_ = true;
   rates_step_ = world.step;

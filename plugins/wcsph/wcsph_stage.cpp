@@ -44,6 +44,13 @@ ParamSet WcsphStage::describe() {
       .default_value("arithmetic")
       .doc("pair viscosity from mu_eff of both particles (non-Newtonian/turbulent): arithmetic mu_i + mu_j "
            "(Morris 1997) or harmonic 4 mu_i mu_j/(mu_i + mu_j) (Cleary 1998; for viscosity jumps)");
+  p.choice("stiff_viscosity", {"explicit", "point_implicit"})
+      .default_value("explicit")
+      .doc("explicit: the viscous step dt <= C h^2 rho/mu_eff; point_implicit: each particle's momentum change is "
+           "divided by 1 + dt D_i (D_i its viscous coupling, the diagonal of a backward-Euler viscous step), which "
+           "removes that bound and keeps equilibria (a local mass scaling): for plug regions that should stay at "
+           "rest (an unyielded sediment core); a plug that must accelerate as a whole does so ~dt D times too slowly "
+           "(Bingham channel spin-up); needs mu_eff (laminar, non-Newtonian) and viscosity_mean harmonic");
   return p;
 }
 
@@ -82,7 +89,8 @@ WcsphStage::WcsphStage(const ParamValues& v)
       viscosity_mean_(pick<sph::ViscosityMean>(v, "viscosity_mean",
                                                {{"arithmetic", sph::ViscosityMean::arithmetic},
                                                 {"harmonic", sph::ViscosityMean::harmonic}})),
-      params_(v) {}
+      params_(v),
+      point_implicit_(v.string("stiff_viscosity") == "point_implicit") {}
 
 void WcsphStage::setup(World& world) {
   h_ = world.kernel.h();
@@ -151,6 +159,12 @@ void WcsphStage::setup(World& world) {
     s.require(field_mu_eff);
   }
   nu_field_max_ = 0.0;
+  if (point_implicit_) {
+    if (!per_particle_viscosity_ || viscosity_mean_ != sph::ViscosityMean::harmonic)
+      params_.fail("stiff_viscosity", "'point_implicit' needs \"viscosity\": \"laminar\" with a non-Newtonian "
+                                      "rheology and \"viscosity_mean\": \"harmonic\"; allowed: explicit");
+    bulk_viscous_support_ = lattice_viscous_support(world);
+  }
 
   // Boundary models of walls (and of blocks, for fluid-block coupling): each
   // must be an SPH boundary pass; one pass per model instance.
@@ -303,6 +317,7 @@ StagePlan WcsphStage::plan(const World& world) const {
     if (smagorinsky_) batch += " + Smagorinsky eddy viscosity";
     plan.passes.push_back(batch);
   }
+  if (point_implicit_) plan.notes.push_back("stiff_viscosity: point-implicit viscous inertia 1 + dt D_i per particle");
   plan.passes.push_back(force);
   for (const sph::SphBoundary* wall : walls_) wall->describe_passes(plan);
   const char* integ = integrator_ == Integrator::symplectic            ? "symplectic (2 evaluations per step)"

@@ -31,6 +31,11 @@ enum class Integrator { symplectic, verlet, predictor_corrector, euler };
 enum class DensityMode { continuity, summation };
 enum class Diffusion { none, molteni, fourtakas };
 
+// sum_j V_j |x_ij . grad W_ij|/(r^2 + eta^2) over a full square/cubic lattice
+// support at the fluid's spacing (viscosity_passes.cpp): the Morris operator's
+// diagonal per unit viscosity/density where walls fill the support.
+double lattice_viscous_support(const World& world);
+
 class WcsphStage final : public Stage {
  public:
   static ParamSet describe();
@@ -63,6 +68,9 @@ class WcsphStage final : public Stage {
   // the Smagorinsky eddy viscosity); pass 3 is the force pass reading mu_eff.
   std::uint64_t strain_rate_pass(World& world);
   void apparent_viscosity_pass(World& world);
+  // stiff_viscosity point_implicit (viscosity_passes.cpp): divide each particle's
+  // acceleration by its inertia factor 1 + dt D_i after all passes.
+  void scale_stiff_particles(World& world);
   void refresh_reciprocals(World& world);
   std::uint64_t fluid_pass(World& world);
   void density_summation(World& world);
@@ -93,6 +101,9 @@ class WcsphStage final : public Stage {
   std::vector<int> rheology_materials_;  // fluid materials whose mu_eff comes from a batch call (non-Newtonian)
   bool per_particle_viscosity_ = false;  // mu_eff field and the three passes in use
   double nu_field_max_ = 0.0;            // max mu_eff/rho of the last evaluation, 1/(m^2/s)
+  bool point_implicit_ = false;          // stiff_viscosity: point_implicit
+  double bulk_viscous_support_ = 0.0;    // sum_j V_j |x_ij.grad W|/(r^2+eta^2) of a full lattice support, 1/m^2
+  std::vector<double> visc_support_, inertia_;  // scratch (point_implicit), refilled every evaluation (grow only)
   std::vector<sph::SphBoundary*> walls_;
   sph::FluidSettings settings_;
   sph::NeighbourGrid cells_;

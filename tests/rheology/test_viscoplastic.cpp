@@ -100,12 +100,13 @@ TEST(Hbp, MohrCoulombYieldStress) {
 }
 
 TEST(Hbp, DruckerPragerYieldStress) {
-  // sqrt(3) (3 c + p tan phi) / sqrt(9 + 12 tan^2 phi), phi = 35 deg, c = 1 Pa, p = 100 Pa.
+  // sqrt(J2) of the plane-strain matched cone: 3 (c + p tan phi) / sqrt(9 + 12 tan^2 phi), phi = 35 deg, c = 1 Pa,
+  // p = 100 Pa. Its friction coefficient 0.545 = tan(28.6 deg): the critical slope, below phi as for any inscribed cone.
   const auto hbp = make<talus::rheology::Hbp>(
       R"({"yield": "drucker_prager", "cohesion": 1, "friction_angle": 35, "regularisation": 1e6, "consistency": 0.126})");
   const double t = 0.70020753820970977, s = std::sqrt(9.0 + 12.0 * t * t);
-  const double tau_y = std::sqrt(3.0) * (3.0 + 100.0 * t) / s;  // 32.78 Pa
-  EXPECT_NEAR(tau_y, 32.7834, 1e-3);
+  const double tau_y = 3.0 * (1.0 + 100.0 * t) / s;  // 55.23 Pa
+  EXPECT_NEAR(tau_y, 55.2273, 1e-3);
   EXPECT_NEAR(mu_of(hbp, {2.0}, {100.0})[0], 0.126 + tau_y / 2.0, 1e-9);
 }
 
