@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "field_select.hpp"
@@ -67,6 +68,22 @@ ParamSet ProbesWriter::describe() {
       .doc(
           "wall bodies whose pressure force from the fluid is written (NAME_fx, NAME_fy[, NAME_fz]): "
           "-sum_a sum_j m_a m_j (p_a/rho_a^2 + p_j/rho_j^2) grad_a W over the body's wall particles a");
+  p.vector_list("wall_sensors")
+      .optional()
+      .unit("m")
+      .doc("wall pressure sensors: points on a wall's surface (half a spacing in front of its first particle layer); "
+           "column NAME_pressure = the normal pressure force of the fluid on the wall particles behind the sensor's "
+           "patch / the patch's area (a transducer in the wall)");
+  p.vector_list("wall_sensor_normals")
+      .optional()
+      .doc("one per wall sensor: the wall's normal pointing into the fluid (need not be unit)");
+  p.string_list("wall_sensor_names").optional().doc("column prefixes of the wall sensors; default W1, W2, ...");
+  p.real("wall_sensor_size")
+      .unit("m")
+      .greater_than(0.0)
+      .optional()
+      .doc("extent of a wall sensor's patch along the wall (2D: length; 3D: diameter); default the wall's particle "
+           "spacing (one row of wall particles)");
   p.boolean("block_forces")
       .default_value(false)
       .doc("external force on every block (the coupling force of the last step): NAME_fx, NAME_fy[, NAME_fz]");
@@ -97,6 +114,32 @@ ProbesWriter::ProbesWriter(const ParamValues& params) : params_(params) {
   } else if (given_strings(params, "gauge_names")) {
     params.fail("gauge_names", "names given but no gauges");
   }
+  if (given_points(params, "wall_sensors")) {
+    const auto at = params.vectors("wall_sensors");
+    const auto normals = given_points(params, "wall_sensor_normals") ? params.vectors("wall_sensor_normals")
+                                                                    : std::vector<Vec3>{};
+    if (normals.size() != at.size())
+      params.fail("wall_sensor_normals", std::to_string(normals.size()) + " normals for " +
+                                             std::to_string(at.size()) + " wall sensors; give one normal per sensor");
+    std::vector<std::string> names;
+    if (given_strings(params, "wall_sensor_names")) {
+      names = params.strings("wall_sensor_names");
+      if (names.size() != at.size())
+        params.fail("wall_sensor_names", std::to_string(names.size()) + " names for " + std::to_string(at.size()) +
+                                             " wall sensors; give one name per sensor");
+    }
+    for (std::size_t i = 0; i < at.size(); ++i) {
+      const double length = norm(normals[i]);
+      if (!(length > 0.0))
+        params.fail("wall_sensor_normals", "the normal of wall sensor " + std::to_string(i + 1) + " is zero");
+      const std::string name = names.empty() ? "W" + std::to_string(i + 1) : names[i];
+      sensors_.push_back({name, at[i], normals[i] * (1.0 / length), {}, 0.0});
+    }
+  } else if (given_strings(params, "wall_sensor_names") || given_points(params, "wall_sensor_normals")) {
+    params.fail(given_strings(params, "wall_sensor_names") ? "wall_sensor_names" : "wall_sensor_normals",
+                "given but no wall_sensors");
+  }
+  if (params.has("wall_sensor_size")) sensor_size_ = params.real("wall_sensor_size");
   gauge_threshold_ = params.real("gauge_threshold");
   if (params.has("gauge_step")) gauge_step_ = params.real("gauge_step");
   block_forces_ = params.boolean("block_forces");
@@ -184,6 +227,10 @@ void ProbesWriter::resolve_columns(const World& world) {
       names_.push_back(world.blocks->name[b] + "_f" + kAxis[c]);
       units_.push_back("N");
     }
+  for (const auto& w : sensors_) {
+    names_.push_back(w.name + "_pressure");
+    units_.push_back("Pa");
+  }
 }
 
 std::string ProbesWriter::comment_lines(const OutputContext& context, const World& world) const {
@@ -206,6 +253,14 @@ std::string ProbesWriter::comment_lines(const OutputContext& context, const Worl
     out +=
         "# wall forces: pressure force of the fluid on the wall particles of each body, "
         "-sum_a sum_j m_a m_j (p_a/rho_a^2 + p_j/rho_j^2) grad_a W, N\n";
+  if (!sensors_.empty()) {
+    out += "# wall sensors (normal pressure force of the fluid on the wall particles behind a patch of the wall surface "
+           "/ the patch area, force as for wall forces):";
+    for (const auto& w : sensors_)
+      out += " " + w.name + "=" + point_text(w.at, world.dim) + " n=" + point_text(w.normal, world.dim) + " (" +
+             std::to_string(w.particles.size()) + " wall particles, area " + format_real(w.area) + ")";
+    out += "\n";
+  }
   if (block_count_ > 0) out += "# block forces: external force of the last step (coupling), N\n";
   return out;
 }
@@ -258,13 +313,19 @@ void ProbesWriter::open(const OutputContext& context, const World& world) {
       }
       wall_bodies_.push_back(b);
     }
+  }
+  if (!wall_bodies_.empty() || !sensors_.empty()) {
+    const char* key = !wall_bodies_.empty() ? "wall_forces" : "wall_sensors";
     for (const char* f : {"mass", "density", "pressure"})
       if (!world.fluid.has(f) || !world.boundary.has(f))
-        params_.fail("wall_forces", std::string("needs the field '") + f +
-                                        "' on fluid and wall particles (an SPH stage with wall particles)");
+        params_.fail(key, std::string("needs the field '") + f +
+                              "' on fluid and wall particles (an SPH stage with wall particles)");
   }
-  if (!points_.empty() || !gauges_.empty() || !wall_bodies_.empty()) {
-    const char* key = !points_.empty() ? "points" : (!gauges_.empty() ? "gauges" : "wall_forces");
+  if (!points_.empty() || !gauges_.empty() || !wall_bodies_.empty() || !sensors_.empty()) {
+    const char* key = !points_.empty() ? "points"
+                      : !gauges_.empty() ? "gauges"
+                      : !wall_bodies_.empty() ? "wall_forces"
+                                              : "wall_sensors";
     if (!(world.kernel.support_radius() > 0.0))
       params_.fail(key, "probes and gauges need an SPH kernel (scene key /kernel)");
     auto inside = [&](const Vec3& p, bool skip_vertical) {
@@ -281,6 +342,7 @@ void ProbesWriter::open(const OutputContext& context, const World& world) {
     sampler_.configure(world.dim, world.lo, world.hi, world.periodic, world.kernel);
     if (gauge_step_ <= 0.0) gauge_step_ = world.dp > 0.0 ? 0.25 * world.dp : 0.25 * world.kernel.h();
   }
+  select_sensor_particles(world);
   resolve_columns(world);
 
   path_ =
@@ -344,26 +406,90 @@ Vec3 ProbesWriter::wall_force(int body, const World& world) const {
   // the force the fluid's pressure exerts on the wall. For a flat wall under a
   // uniform pressure p it tends to p A along the inward normal.
   const ParticleStore& wall = world.boundary;
-  const ParticleStore& fluid = world.fluid;
-  const auto xa = wall.position();
   const auto owner = wall.body();
-  const auto ma = wall.scalar("mass"), rhoa = wall.scalar("density"), pa = wall.scalar("pressure");
-  const auto mj = fluid.scalar("mass"), rhoj = fluid.scalar("density"), pj = fluid.scalar("pressure");
-  const KernelTable& kernel = sampler_.kernel();
+  const ForceFields fields(world);
   double fx = 0.0, fy = 0.0, fz = 0.0;
 #pragma omp parallel for reduction(+ : fx, fy, fz) schedule(static)
   for (std::size_t a = 0; a < wall.size(); ++a) {
     if (owner[a] != body) continue;
-    const double qa = pa[a] / (rhoa[a] * rhoa[a]);
-    Vec3 f{};
-    sampler_.for_each_neighbour(xa[a], [&](Index j, const Vec3& dx, double r) {
-      f -= (mj[j] * (qa + pj[j] / (rhoj[j] * rhoj[j])) * kernel.dw_over_r(r)) * dx;
-    });
-    fx += ma[a] * f.x;
-    fy += ma[a] * f.y;
-    fz += ma[a] * f.z;
+    const Vec3 f = particle_force(a, fields);
+    fx += f.x;
+    fy += f.y;
+    fz += f.z;
   }
   return {fx, fy, fz};
+}
+
+ProbesWriter::ForceFields::ForceFields(const World& world)
+    : xa(world.boundary.position()),
+      ma(world.boundary.scalar("mass")),
+      rhoa(world.boundary.scalar("density")),
+      pa(world.boundary.scalar("pressure")),
+      mj(world.fluid.scalar("mass")),
+      rhoj(world.fluid.scalar("density")),
+      pj(world.fluid.scalar("pressure")) {}
+
+Vec3 ProbesWriter::particle_force(std::size_t a, const ForceFields& s) const {
+  const double qa = s.pa[a] / (s.rhoa[a] * s.rhoa[a]);
+  const KernelTable& kernel = sampler_.kernel();
+  Vec3 f{};
+  sampler_.for_each_neighbour(s.xa[a], [&](Index j, const Vec3& dx, double r) {
+    f -= (s.mj[j] * (qa + s.pj[j] / (s.rhoj[j] * s.rhoj[j])) * kernel.dw_over_r(r)) * dx;
+  });
+  return f * s.ma[a];
+}
+
+// The wall particles behind each sensor's patch: at a depth 0 <= -(x_a - at).n
+// within the kernel support (deeper ones feel no fluid) and a distance along
+// the wall |(x_a - at) - ((x_a - at).n) n| <= size/2. The patch's area is the
+// number of those in the first layer (depth < dp) times dp^(dim-1): every
+// first-layer particle stands for dp^(dim-1) of the wall surface.
+void ProbesWriter::select_sensor_particles(const World& world) {
+  sensor_wall_size_ = world.boundary.size();
+  if (sensors_.empty()) return;
+  const ParticleStore& wall = world.boundary;
+  const auto x = wall.position();
+  const auto owner = wall.body();
+  const double reach = world.kernel.support_radius();
+  for (auto& s : sensors_) {
+    s.particles.clear();
+    s.area = 0.0;
+    // The wall's spacing: that of the body of the nearest wall particle behind the surface.
+    double best = std::numeric_limits<double>::infinity();
+    int body = -1;
+    for (std::size_t a = 0; a < wall.size(); ++a) {
+      const Vec3 d = x[a] - s.at;
+      const double r2 = norm2(d);
+      if (dot(d, s.normal) <= 0.0 && r2 < best) {
+        best = r2;
+        body = owner[a];
+      }
+    }
+    const double dp = body >= 0 && world.bodies[body].dp > 0.0 ? world.bodies[body].dp : world.dp;
+    const double half = 0.5 * (sensor_size_ > 0.0 ? sensor_size_ : dp) * (1.0 + 1e-9);
+    std::size_t surface = 0;
+    for (std::size_t a = 0; a < wall.size(); ++a) {
+      const Vec3 d = x[a] - s.at;
+      const double depth = -dot(d, s.normal);
+      if (depth < 0.0 || depth > reach + 0.5 * dp) continue;
+      if (norm(d + s.normal * depth) > half) continue;
+      s.particles.push_back(static_cast<Index>(a));
+      if (depth < dp) ++surface;
+    }
+    if (surface == 0)
+      params_.fail("wall_sensors", s.name + " at " + point_text(s.at, world.dim) +
+                                       ": no wall particle within one spacing behind it along the normal " +
+                                       point_text(s.normal, world.dim) +
+                                       "; put the sensor on a wall surface, the normal pointing into the fluid");
+    s.area = static_cast<double>(surface) * std::pow(dp, world.dim - 1);
+  }
+}
+
+double ProbesWriter::sensor_pressure(const WallSensor& sensor, const World& world) const {
+  const ForceFields fields(world);
+  double push = 0.0;  // the fluid pushes the wall along -n
+  for (Index a : sensor.particles) push -= dot(particle_force(a, fields), sensor.normal);
+  return push / sensor.area;
 }
 
 void ProbesWriter::write(const World& world) {
@@ -376,7 +502,7 @@ void ProbesWriter::write(const World& world) {
     row_ += format_real(v);
   };
 
-  if (!points_.empty() || !gauges_.empty() || !wall_bodies_.empty()) {
+  if (!points_.empty() || !gauges_.empty() || !wall_bodies_.empty() || !sensors_.empty()) {
     const std::size_t n = fluid.size();
     volume_.resize(n);
     if (fluid.has("mass") && fluid.has("density")) {
@@ -427,6 +553,8 @@ void ProbesWriter::write(const World& world) {
     for (int k = 0; k < world.dim; ++k)
       put(present ? world.blocks->external_force[b][k] : std::numeric_limits<double>::quiet_NaN());
   }
+  if (!sensors_.empty() && world.boundary.size() != sensor_wall_size_) select_sensor_particles(world);
+  for (const auto& s : sensors_) put(sensor_pressure(s, world));
   row_ += '\n';
   file_.append(row_);
   have_last_step_ = true;

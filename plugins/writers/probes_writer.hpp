@@ -8,13 +8,21 @@
 //    particle count, particles removed, peak speed;
 //  - forces: the fluid's pressure force on wall bodies (the SPH pair force
 //    between fluid and wall particles, summed over the body's wall particles)
-//    and the external (coupling) force on each block.
+//    and the external (coupling) force on each block;
+//  - wall pressure sensors: the fluid's pressure force on the wall particles
+//    behind a patch of a wall's surface, normal component, divided by the
+//    patch's area (a pressure transducer mounted in the wall). With dynamic
+//    boundary particles this, not the fluid pressure interpolated next to
+//    the wall, is the load the wall carries: the first wall layer holds the
+//    fluid off at a gap with its own (much higher) pressure, and the fluid
+//    pressure within a kernel support of the wall falls short of the load.
 // The file is append-only: '#' comment lines, a header row, then one row per
 // frame written with one write(2); a failed write is cut back so the file
 // always ends with a complete row. Layout: docs/output-formats.md.
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -50,6 +58,12 @@ class ProbesWriter final : public Writer {
     std::string name;
     Vec3 at;
   };
+  struct WallSensor {
+    std::string name;
+    Vec3 at, normal;                // a point on the wall surface; unit normal into the fluid
+    std::vector<Index> particles;   // wall particles behind the patch (indices in world.boundary)
+    double area = 0.0;              // m^2 (m in 2D): surface-layer particles times dp^(dim-1)
+  };
 
   void resolve_columns(const World& world);
   std::string comment_lines(const OutputContext& context, const World& world) const;
@@ -58,6 +72,16 @@ class ProbesWriter final : public Writer {
   std::size_t resume_bytes(const std::string& header, std::uint64_t step, std::uint64_t& last_step, bool& rows) const;
   double integral(Quantity q, const World& world) const;
   Vec3 wall_force(int body, const World& world) const;
+  // The fields the wall force reads, looked up once per row.
+  struct ForceFields {
+    explicit ForceFields(const World& world);
+    std::span<const Vec3> xa;
+    std::span<const double> ma, rhoa, pa, mj, rhoj, pj;
+  };
+  // The pressure force of the fluid on wall particle a (needs the sampler bound to the fluid).
+  Vec3 particle_force(std::size_t a, const ForceFields& fields) const;
+  void select_sensor_particles(const World& world);
+  double sensor_pressure(const WallSensor& sensor, const World& world) const;
 
   ParamValues params_;
   std::vector<Vec3> points_;
@@ -66,6 +90,9 @@ class ProbesWriter final : public Writer {
   std::vector<Quantity> integrals_;
   bool block_forces_ = false;
   std::vector<int> wall_bodies_;  // scene body indices
+  std::vector<WallSensor> sensors_;
+  double sensor_size_ = 0.0;      // m; 0: the wall particle spacing
+  std::size_t sensor_wall_size_ = 0;  // world.boundary.size() when the sensors' particles were selected
   double gauge_step_ = 0.0, gauge_threshold_ = 0.5;
   int vertical_ = 2;
 

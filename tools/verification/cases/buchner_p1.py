@@ -1,0 +1,117 @@
+"""2D dam break against a wall: pressure at sensor P1 against Buchner (2002).
+
+Set-up of Marrone et al. (2011, CMAME 200): a column H = 0.6 m high and 2H long released in a tank 5.366H long;
+P1 sits on the downstream wall at y = 0.2H (the reference file's header). The water SPH issue asks for the impact
+time within 10 % and the pressure within 25 %.
+
+What is measured, and why: P1 is a *wall* sensor (probes writer "wall_sensors"): the normal pressure force the
+fluid exerts on the wall particles behind the sensor, divided by the sensor's area, i.e. the load a transducer in
+the wall carries. The fluid pressure interpolated next to a wall of dynamic boundary particles is not that load:
+after the impact the first wall layer holds the fluid off at a gap of 1.5-2 dp with its own pressure (4-6 rho g H at
+dp = H/30), and the fluid pressure within a kernel support of the wall falls short of the load. Measured at
+dp = H/30, plateau over t sqrt(g/H) in [4, 5]: fluid Shepard average dp/2 in front of the wall 0.33, 1.5 dp 0.38,
+2.5 dp 0.52; wall sensor 0.51 (measured 0.54). The wall-particle pressure itself is no sensor for this boundary
+model (it is a repulsion pressure, not the fluid's).
+
+error(): relative error of the mean pressure over t sqrt(g/H) in [4, 5] (the quasi-steady plateau after the
+run-up has fallen back, before the overturning jet returns near 5.5); a gate holds the impact time (first
+p > 0.25 rho g H, above the +-0.16 noise of the measurement before the impact) within 10 %. The impact peak is
+reported, not gated: a weakly compressible model's peak is an acoustic spike of the particle spacing and the
+sampling, not the transducer's filtered value.
+
+Measured (wall sensor; plateau 0.541 measured; impact 2.512 measured; wall time on a shared 2-core machine, 1 thread):
+  dp = H/20: plateau 0.577 (+6.7 %), impact 2.669 (+6.2 %), fluid probe 0.190, peak (0.05 s mean) 0.86,   35 s
+  dp = H/30: plateau 0.511 (-5.5 %), impact 2.701 (+7.5 %), fluid probe 0.326, peak 1.22,                164 s
+  dp = H/40: plateau 0.584 (+8.0 %), impact 2.596 (+3.4 %), fluid probe 0.356, peak 0.89,                227 s
+  dp = H/60: plateau 0.600 (+10.9 %), impact 2.539 (+1.1 %), fluid probe 0.394, peak 0.80,              1198 s
+The sensor height matters: Adami et al. (2012) and TrixiParticles centre P1 at ~0.26H (Greco's shift); there the
+wall sensor reads 0.529 at H/30 (0.2H: 0.511).
+"""
+import math
+import os
+
+import numpy as np
+
+from verification.cases._util import set_dp
+
+NAME = "buchner_p1"
+TITLE = "2D dam break against a wall (Buchner 2002), wall pressure at P1 (y = 0.2H)"
+SCENE = "share/scenes/dam_break_2d_buchner.json"
+LADDER = [0.03, 0.02, 0.015]  # H/20, H/30, H/40
+TOLERANCE = {0.03: 0.25, 0.02: 0.25, 0.015: 0.25}
+ERROR_LABEL = "|mean p_P1 - mean p_exp| / mean p_exp over t sqrt(g/H) in [4, 5] (wall sensor)"
+REFERENCE = "Buchner (2002) P1, digitised in pypr/pysph (shared/validation-data/dambreak2d_buchner2002_P1_pysph.csv)"
+# The plateau's error is set by the measurement's scatter and the wall model's load noise, not by dp along this
+# short ladder: it must stay within 25 %, not fall (measured 0.512 at H/30 against 0.544).
+CONVERGES = False
+QUICK_INDEX = 0
+G, H, RHO0, LENGTH = 9.81, 0.6, 1000.0, 3.2196
+SENSOR_Y = 0.2 * H
+PLATEAU = (4.0, 5.0)
+IMPACT_LEVEL = 0.25  # p / (rho g H)
+DATA = os.path.join(os.path.dirname(__file__), "..", "..", "..", "..", "shared", "validation-data",
+                    "dambreak2d_buchner2002_P1_pysph.csv")
+
+
+def configure(scene, dp, option):
+    set_dp(scene, dp)
+    scene["time"]["end"] = 7.0 * math.sqrt(H / G)
+    scene["outputs"] = [{"type": "probes", "every": 0.002, "file": "p1.csv",
+                         "wall_sensors": [[LENGTH, SENSOR_Y]], "wall_sensor_normals": [[-1, 0]],
+                         "wall_sensor_names": ["P1"],
+                         "points": [[LENGTH - 0.5 * dp, SENSOR_Y]], "point_names": ["P1_fluid"],
+                         "fields": ["pressure"], "integrals": ["particles", "removed"]}]
+    if option:
+        scene["pipeline"][0].update(option)
+    return scene
+
+
+def _read(path):
+    with open(path) as f:
+        lines = [line for line in f if line.strip() and not line.startswith("#")]
+    names = lines[0].strip().split(",")
+    rows = np.array([[float(v) for v in line.split(",")] for line in lines[1:]])
+    return {n: rows[:, k] for k, n in enumerate(names)}
+
+
+def measured():
+    """(t sqrt(g/H), p / (rho g H)) of the measurement, sorted by time."""
+    rows = _read(DATA)
+    t, p = rows["t_star"], rows["p_over_rhogH"]
+    order = np.argsort(t, kind="stable")
+    return t[order], p[order]
+
+
+def simulated(run, column="P1_pressure"):
+    files = [f for f in run.output_files("probes") if f.endswith("p1.csv")]
+    rows = _read(files[0])
+    return rows["time"] * math.sqrt(G / H), rows[column] / (RHO0 * G * H)
+
+
+def plateau(t, p):
+    """Time mean over PLATEAU of a series (linear between samples: the digitised points are uneven)."""
+    grid = np.linspace(PLATEAU[0], PLATEAU[1], 201)
+    return float(np.mean(np.interp(grid, t, np.nan_to_num(p))))
+
+
+def impact_time(t, p):
+    above = np.nonzero(np.nan_to_num(p) > IMPACT_LEVEL)[0]
+    return float(t[above[0]]) if len(above) else float("nan")
+
+
+def error(run):
+    return abs(plateau(*simulated(run)) - plateau(*measured())) / plateau(*measured())
+
+
+def gates(run):
+    t, p = simulated(run)
+    te, pe = measured()
+    ti, tie = impact_time(t, p), impact_time(te, pe)
+    fluid = plateau(*simulated(run, "P1_fluid_pressure"))
+    smooth = np.convolve(np.nan_to_num(p), np.ones(25) / 25, mode="same")  # 0.05 s running mean
+    window = (t > 2.0) & (t < 4.0)
+    return [("impact time within 10 % (first p > 0.25 rho g H)", abs(ti - tie) <= 0.10 * tie,
+             f"t sqrt(g/H) = {ti:.3f} vs {tie:.3f} measured ({(ti - tie) / tie:+.1%}); plateau {plateau(t, p):.3f} "
+             f"vs {plateau(te, pe):.3f}, fluid probe dp/2 off the wall {fluid:.3f}; impact peak "
+             f"(0.05 s mean) {smooth[window].max():.2f} vs {pe[(te > 2.0) & (te < 4.0)].max():.2f}"),
+            ("no particle lost", run.summary.get("removed", 0) == 0, f"{run.summary.get('removed', 0)} removed")]
