@@ -1,6 +1,7 @@
 #include "block_link.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include "talus/blocks.hpp"
@@ -9,6 +10,26 @@
 #include "talus/world.hpp"
 
 namespace talus::coupling {
+
+Vec3 nearest_image(const World& world, const Vec3& p, const Vec3& near) {
+  Vec3 out = p;
+  for (int a = 0; a < 3; ++a)
+    if (world.periodic[a]) {
+      const double period = world.hi[a] - world.lo[a];
+      out[a] -= period * std::round((p[a] - near[a]) / period);
+    }
+  return out;
+}
+
+Vec3 wrap_periodic(const World& world, Vec3 p) {
+  for (int a = 0; a < 3; ++a)
+    if (world.periodic[a]) {
+      const double period = world.hi[a] - world.lo[a];
+      p[a] -= period * std::floor((p[a] - world.lo[a]) / period);
+      if (p[a] >= world.hi[a]) p[a] = world.lo[a];  // round-off of a point just below lo
+    }
+  return p;
+}
 
 std::vector<std::size_t> find_blocks(const World& world, std::span<const int> bodies, const std::string& model) {
   std::vector<std::size_t> out;
@@ -45,7 +66,7 @@ std::size_t clear_fluid_inside(World& world, std::span<const std::size_t> blocks
     const Vec3 lo = b.bounds_lo[k] - pad, hi = b.bounds_hi[k] + pad;
     for (std::size_t i = 0; i < n; ++i) {
       if (inside[i]) continue;
-      const Vec3 p = x[i];
+      const Vec3 p = nearest_image(world, x[i], b.position[k]);
       if (p.x < lo.x || p.y < lo.y || p.z < lo.z || p.x > hi.x || p.y > hi.y || p.z > hi.z) continue;
       const Vec3 body_point = rotate_inverse(b.orientation[k], p - b.position[k]);
       if (dda::plane_distance(b.shape[k], body_point) < clearance) {

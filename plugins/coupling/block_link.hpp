@@ -16,6 +16,12 @@ class World;
 
 namespace talus::coupling {
 
+// Periodic axes (the dda stage does not wrap blocks, so a block may straddle
+// a periodic boundary): the image of p nearest `near`, and p wrapped into
+// [lo, hi) on the periodic axes.
+Vec3 nearest_image(const World& world, const Vec3& p, const Vec3& near);
+Vec3 wrap_periodic(const World& world, Vec3 p);
+
 // Index in world.blocks of each body; throws InputError naming /pipeline when
 // the dda stage has not set up yet (it must be listed before the fluid stage).
 std::vector<std::size_t> find_blocks(const World& world, std::span<const int> bodies, const std::string& model);

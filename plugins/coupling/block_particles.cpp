@@ -179,6 +179,7 @@ void BlockParticles::bind(World& world, const sph::FluidSettings& settings) {
     begin_.push_back(first);
     end_.push_back(first + points.size());
   }
+  for (int a = 0; a < 3; ++a) period_[a] = world.periodic[a] ? world.hi[a] - world.lo[a] : 0.0;
   cells_.assign(blocks_.size(), sph::NeighbourGrid{});
   for (auto& c : cells_) c.configure(world.dim, settings.lo, settings.hi, radius, world.periodic);
   thread_force_.assign(omp_get_max_threads(), Vec3{});
@@ -203,7 +204,7 @@ void BlockParticles::place(World& world) {
     const Quaternion q = b.orientation[i];
     for (std::size_t p = begin_[k]; p < end_[k]; ++p) {
       const Vec3 r = rotate(q, off[p]);
-      x[p] = X + r;
+      x[p] = wrap_periodic(world, X + r);  // a block may straddle a periodic boundary: its particles stay inside
       v[p] = V + cross(w, r);
     }
   }
@@ -274,7 +275,8 @@ void BlockParticles::interact(World& world, const sph::FluidView& fluid, const s
                        c.data() + first, m.data() + first, mat.data() + first};
     nb.inv_density = inv_rho_.data() + first;
     const BlockPassInput in{fluid, rates, cells_[k], xb, kernel, b.bounds_lo[blocks_[k]], b.bounds_hi[blocks_[k]],
-                            b.position[blocks_[k]], mu, continuity, thread_force_.data(), thread_torque_.data()};
+                            b.position[blocks_[k]], period_, mu, continuity, thread_force_.data(),
+                            thread_torque_.data()};
     const sph::PressureForce pressure{nb};
     const sph::Continuity cont{nb};
     switch (settings_.viscosity) {

@@ -69,6 +69,7 @@ class BlockParticles final : public sph::SphBoundary {
   std::size_t removed_ = 0;
   std::size_t fitted_ = 0;  // fluid particles moved onto the faces at the start (fluid_fit.hpp)
   sph::FluidSettings settings_;
+  Vec3 period_{};  // domain length on periodic axes (minimum-image lever arms, block_pass.hpp)
   std::vector<sph::NeighbourGrid> cells_;           // per block
   std::vector<Vec3> thread_force_, thread_torque_;
   std::vector<double> inv_rho_;           // 1/rho of my particles, refreshed per interact (scratch)

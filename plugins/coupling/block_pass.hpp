@@ -9,6 +9,12 @@
 // -m_i a_i. Its torque about the centroid X sums (x_b - X) x (-m_i a_ib) over
 // pairs = (x_i - X) x (-m_i a_i) + m_i sum_b dx_ib x a_ib (dx = x_i - x_b), so
 // non-central (viscous) pair forces contribute their exact moment too.
+//
+// Periodic axes: a block may straddle a periodic boundary (the dda stage does
+// not wrap blocks), so x_i - X is taken as its minimum image (period_ > 0 on
+// periodic axes), both for the lever arm and for the bounding-box filter:
+// fluid across the boundary from the centroid still acts, about the image of
+// the centroid it is near.
 #pragma once
 
 #include <cmath>
@@ -24,6 +30,13 @@
 
 namespace talus::coupling {
 
+// The minimum image of a separation d: each periodic component in [-L/2, L/2].
+inline Vec3 minimum_image(Vec3 d, const Vec3& period) {
+  for (int a = 0; a < 3; ++a)
+    if (period[a] > 0.0) d[a] -= period[a] * std::round(d[a] / period[a]);
+  return d;
+}
+
 struct BlockPassInput {
   const sph::FluidView& fluid;
   const sph::FluidRates& rates;
@@ -32,6 +45,7 @@ struct BlockPassInput {
   const KernelTable& kernel;
   Vec3 lo, hi;                  // block bounding box
   Vec3 centre;                  // block centroid
+  Vec3 period;                  // domain length on periodic axes, 0 on closed ones
   const double* mu;             // viscosity per material
   bool continuity;
   Vec3* thread_force;           // out: per-thread partial force on the block
@@ -54,7 +68,8 @@ std::uint64_t block_pass(const BlockPassInput& in, const Terms&... terms) {
 #pragma omp for schedule(static)
     for (std::int64_t ii = 0; ii < n; ++ii) {
       const auto i = static_cast<Index>(ii);
-      const Vec3 xi = f.position[i];
+      const Vec3 arm = minimum_image(f.position[i] - in.centre, in.period);  // lever arm about the centroid
+      const Vec3 xi = in.centre + arm;                                         // the image near the block
       if (xi.x < lo.x || xi.y < lo.y || xi.z < lo.z || xi.x > hi.x || xi.y > hi.y || xi.z > hi.z) continue;
       sph::FluidSums s;
       s.v = f.velocity[i];
@@ -65,7 +80,7 @@ std::uint64_t block_pass(const BlockPassInput& in, const Terms&... terms) {
       s.mu = in.mu[f.material[i]];
       Vec3 moment{};
       std::uint64_t count = 0;
-      in.cells.for_each_neighbour(xi, in.xb, radius, [&](Index j, const Vec3& dx, double r2) {
+      in.cells.for_each_neighbour(f.position[i], in.xb, radius, [&](Index j, const Vec3& dx, double r2) {
         sph::Pair q;
         q.j = j;
         q.dx = dx;
@@ -87,7 +102,7 @@ std::uint64_t block_pass(const BlockPassInput& in, const Terms&... terms) {
       const double mi = f.mass[i];
       const Vec3 on_block = s.acc * (-mi);
       force += on_block;
-      torque += cross(xi - in.centre, on_block) + moment * mi;
+      torque += cross(arm, on_block) + moment * mi;
     }
     in.thread_force[omp_get_thread_num()] = force;
     in.thread_torque[omp_get_thread_num()] = torque;

@@ -6,6 +6,7 @@
 
 #include <omp.h>
 
+#include "block_pass.hpp"
 #include "talus/blocks.hpp"
 #include "talus/eos.hpp"
 #include "talus/error.hpp"
@@ -46,6 +47,7 @@ void Repulsion::bind(World& world, const sph::FluidSettings&) {
   const int material = coupling_material(world, bodies_.front(), "block_repulsion", material_name_);
   const Material& mat = world.materials[material];
   r0_ = r0_param_ > 0.0 ? r0_param_ : world.dp;
+  for (int a = 0; a < 3; ++a) period_[a] = world.periodic[a] ? world.hi[a] - world.lo[a] : 0.0;
   const double m_ref = mat.density * std::pow(world.dp, world.dim);
   const double c0 = mat.eos ? mat.eos->reference_sound_speed() : 0.0;
   if (ks_param_ <= 0.0 && !(c0 > 0.0))
@@ -88,13 +90,14 @@ void Repulsion::interact(World& world, const sph::FluidView& fluid, const sph::F
     const Vec3* nrm = normals_.data();
     const double* off = offsets_.data();
     const std::size_t faces = normals_.size();
+    const Vec3 period = period_;
     const Vec3 lo = b.bounds_lo[blk] - Vec3{r0, r0, r0}, hi = b.bounds_hi[blk] + Vec3{r0, r0, r0};
 #pragma omp parallel reduction(+ : pairs)
     {
       Vec3 force{}, torque{};
 #pragma omp for schedule(static)
       for (std::int64_t ii = 0; ii < n; ++ii) {
-        const Vec3 x = fluid.position[ii];
+        const Vec3 x = X + minimum_image(fluid.position[ii] - X, period);  // the image near the block
         if (x.x < lo.x || x.y < lo.y || x.z < lo.z || x.x > hi.x || x.y > hi.y || x.z > hi.z) continue;
         double s = -std::numeric_limits<double>::infinity();
         std::size_t face = 0;

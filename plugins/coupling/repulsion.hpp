@@ -48,6 +48,7 @@ class Repulsion final : public sph::SphBoundary {
   std::vector<std::size_t> blocks_;
   std::vector<Vec3> normals_;    // world-frame face normals of the current block
   std::vector<double> offsets_;
+  Vec3 period_{};  // domain length on periodic axes: fluid is taken at its image nearest the block
   std::vector<Vec3> thread_force_, thread_torque_;
   ImpulseLedger ledger_;
   std::uint64_t pairs_ = 0;
