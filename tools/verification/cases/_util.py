@@ -10,6 +10,23 @@ def set_dp(scene, dp, kinds=("fluid", "wall")):
     return scene
 
 
+def periodic_strip(scene, dp, particles=8):
+    """Shortens a periodic channel scene along x to `particles` spacings at every rung (the strip must span the
+    kernel support): the domain and every body's box."""
+    length = particles * dp
+    scene["domain"]["max"][0] = length
+    for body in scene["bodies"]:
+        next(iter(body["shape"].values()))["max"][0] = length
+    return scene
+
+
+def row_averages(f, dp, *values):
+    """Averages over each particle row (rows dp apart, y = (k + 1/2) dp) of a frame: (y, each of `values`)."""
+    rows = np.round(f["y"] / dp - 0.5).astype(int)
+    ids = np.unique(rows)
+    return tuple(np.array([v[rows == r].mean() for r in ids]) for v in (f["y"], *values))
+
+
 def last_frame(run):
     """(time, dict of numpy arrays) of the last frame of the run's HDF5 output."""
     with run.hdf5() as f:

@@ -1,7 +1,7 @@
 """Steady Bingham channel flow (Papanastasiou-regularised) against the analytic plug-flow solution."""
 import numpy as np
 
-from verification.cases._util import last_frame, set_dp
+from verification.cases._util import last_frame, periodic_strip, row_averages, set_dp
 from verification.cases.herschel_bulkley_channel_2d import half_width, regularised_profile as hbp_profile
 
 NAME = "bingham_channel_2d"
@@ -41,12 +41,7 @@ def analytic(y):
 
 
 def configure(scene, dp, option):
-    set_dp(scene, dp)
-    # The periodic strip along x keeps 8 particles at every rung (it must span the kernel support).
-    length = 8 * dp
-    scene["domain"]["max"][0] = length
-    for body in scene["bodies"]:
-        next(iter(body["shape"].values()))["max"][0] = length
+    periodic_strip(set_dp(scene, dp), dp)
     scene["outputs"] = [{"type": "hdf5", "every": 0.2, "fields": ["velocity", "shear_rate", "mu_eff"]}]
     return scene
 
@@ -54,12 +49,7 @@ def configure(scene, dp, option):
 def profile(run):
     """Row averages (y, u, stress mu_eff |D|) of the last frame."""
     _, f = last_frame(run)
-    y, u, tau = f["y"], f["velocity_0"], f["mu_eff"] * f["shear_rate"]
-    dp = run.scene["bodies"][0]["dp"]
-    rows = np.round(y / dp - 0.5).astype(int)
-    ids = np.unique(rows)
-    return (np.array([y[rows == r].mean() for r in ids]), np.array([u[rows == r].mean() for r in ids]),
-            np.array([tau[rows == r].mean() for r in ids]))
+    return row_averages(f, run.scene["bodies"][0]["dp"], f["velocity_0"], f["mu_eff"] * f["shear_rate"])
 
 
 def centre_velocity(run):

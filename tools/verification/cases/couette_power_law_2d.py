@@ -1,7 +1,7 @@
 """Plane Couette-Poiseuille flow of a power-law fluid: steady profile against the analytic solution."""
 import numpy as np
 
-from verification.cases._util import frames, last_frame, set_dp
+from verification.cases._util import frames, last_frame, periodic_strip, row_averages, set_dp
 
 NAME = "couette_power_law_2d"
 TITLE = "Power-law Couette flow (moving lid + opposing body force), 2D, three-pass viscosity, moving DBC wall"
@@ -45,24 +45,13 @@ def analytic(y, n, k, u_lid, force):
 
 
 def configure(scene, dp, option):
-    set_dp(scene, dp)
-    length = 8 * dp  # the periodic strip spans the kernel support at every rung
-    scene["domain"]["max"][0] = length
-    for body in scene["bodies"]:
-        next(iter(body["shape"].values()))["max"][0] = length
+    periodic_strip(set_dp(scene, dp), dp)
     scene["outputs"] = [{"type": "hdf5", "every": 0.25, "fields": ["velocity", "shear_rate", "mu_eff"]}]
     return scene
 
 
-def _profile(f, dp):
-    y, u = f["y"], f["velocity_0"]
-    rows = np.round(y / dp - 0.5).astype(int)
-    ids = np.unique(rows)
-    return np.array([y[rows == r].mean() for r in ids]), np.array([u[rows == r].mean() for r in ids])
-
-
 def _l2(run, f):
-    y, u = _profile(f, run.scene["bodies"][0]["dp"])
+    y, u = row_averages(f, run.scene["bodies"][0]["dp"], f["velocity_0"])
     ua = analytic(y, *_params(run.scene))
     return float(np.sqrt(np.sum((u - ua) ** 2) / np.sum(ua**2)))
 

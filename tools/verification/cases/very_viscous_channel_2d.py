@@ -1,7 +1,7 @@
 """Very viscous (nu = 1 m^2/s) channel flow: a stability hard case where the viscous time-step limit dominates."""
 import numpy as np
 
-from verification.cases._util import frames, last_frame, set_dp
+from verification.cases._util import frames, last_frame, periodic_strip, set_dp
 
 NAME = "very_viscous_channel_2d"
 TITLE = "Very viscous channel (mu = 1000 Pa s), 2D: viscous time-step limit dominating, long run past steady state"
@@ -23,11 +23,7 @@ def analytic(y):
 
 
 def configure(scene, dp, option):
-    set_dp(scene, dp)
-    length = 8 * dp  # the periodic strip spans the kernel support at every rung
-    scene["domain"]["max"][0] = length
-    for body in scene["bodies"]:
-        next(iter(body["shape"].values()))["max"][0] = length
+    periodic_strip(set_dp(scene, dp), dp)
     scene["outputs"] = [{"type": "hdf5", "every": 5e-5, "fields": ["velocity", "density"]}]
     return scene
 
