@@ -190,22 +190,27 @@ TEST(ProbesWriter, IntegralsAndLayout) {
 // the sum falls short by the kernel's discretisation error, which shrinks as
 // h/dp grows: measured 2.6 % at h = 1.3 dp and 0.08 % at h = 2 dp. The test
 // pins both bounds and the convergence; the sideways force cancels by symmetry.
-double floor_force_fraction(double h_over_dp, const std::string& folder) {
-  World w;
-  const double dp = 0.02, p0 = 1000.0, length = 1.0;
+constexpr double kFloorDp = 0.02, kFloorP0 = 1000.0, kFloorLength = 1.0;
+
+// Fluid rows 10 dp deep over a floor of 6 wall rows (0.12 m, deeper than the kernel support 4 dp), periodic along
+// x over kFloorLength, fluid and wall particles at the pressure p(x).
+template <class Pressure>
+void fluid_on_floor(World& w, double h_over_dp, Pressure pressure) {
+  const double dp = kFloorDp;
   w.lo = {0, -0.2, 0};
-  w.hi = {length, 0.5, 0};
+  w.hi = {kFloorLength, 0.5, 0};
   w.periodic = {true, false, false};
   w.bodies.resize(2);
   w.bodies[0].name = "water";
   w.bodies[1].name = "floor";
   w.bodies[1].kind = BodyKind::wall;
+  w.bodies[1].dp = dp;
   test::fill_lattice(w, 2, {0, 0, 0}, 50, 10, 1, dp);
   w.h = h_over_dp * dp;
   w.kernel = KernelTable(test::TestWendlandC2{}, 2, w.h);
-  for (auto& p : w.fluid.scalar("pressure")) p = p0;
+  for (std::size_t i = 0; i < w.fluid.size(); ++i) w.fluid.scalar("pressure")[i] = pressure(w.fluid.position()[i]);
   test::require_host_fields(w.boundary);
-  const int nx = 50, layers = 6;  // 0.12 m, deeper than the kernel support 4 dp
+  const int nx = 50, layers = 6;
   w.boundary.append(nx * layers);
   for (int k = 0; k < layers; ++k)
     for (int i = 0; i < nx; ++i) {
@@ -213,9 +218,15 @@ double floor_force_fraction(double h_over_dp, const std::string& folder) {
       w.boundary.position()[a] = {(i + 0.5) * dp, -(k + 0.5) * dp, 0.0};
       w.boundary.scalar("density")[a] = 1000.0;
       w.boundary.scalar("mass")[a] = 1000.0 * dp * dp;
-      w.boundary.scalar("pressure")[a] = p0;
+      w.boundary.scalar("pressure")[a] = pressure(w.boundary.position()[a]);
       w.boundary.body()[a] = 1;
     }
+}
+
+double floor_force_fraction(double h_over_dp, const std::string& folder) {
+  World w;
+  const double p0 = kFloorP0, length = kFloorLength;
+  fluid_on_floor(w, h_over_dp, [&](const Vec3&) { return p0; });
   writers::ProbesWriter writer(params_from_json(writers::ProbesWriter::describe(),
                                                 R"({"wall_forces": ["floor"], "integrals": ["particles"]})", 2));
   writer.open(test::context_for(folder), w);
@@ -263,30 +274,9 @@ TEST(ProbesWriter, WallForceOfAUniformPressureIsPressureTimesArea) {
 TEST(ProbesWriter, WallSensorReadsTheLocalWallPressure) {
   TempDir dir("probes-sensor");
   World w;
-  const double dp = 0.02, p0 = 1000.0, length = 1.0;
-  w.lo = {0, -0.2, 0};
-  w.hi = {length, 0.5, 0};
-  w.periodic = {true, false, false};
-  w.bodies.resize(2);
-  w.bodies[0].name = "water";
-  w.bodies[1].name = "floor";
-  w.bodies[1].kind = BodyKind::wall;
-  w.bodies[1].dp = dp;
-  test::fill_lattice(w, 2, {0, 0, 0}, 50, 10, 1, dp);
-  auto pressure = [&](const Vec3& x) { return p0 * (1.0 + x.x / length); };
-  for (std::size_t i = 0; i < w.fluid.size(); ++i) w.fluid.scalar("pressure")[i] = pressure(w.fluid.position()[i]);
-  test::require_host_fields(w.boundary);
-  const int nx = 50, layers = 6;
-  w.boundary.append(nx * layers);
-  for (int k = 0; k < layers; ++k)
-    for (int i = 0; i < nx; ++i) {
-      const std::size_t a = k * nx + i;
-      w.boundary.position()[a] = {(i + 0.5) * dp, -(k + 0.5) * dp, 0.0};
-      w.boundary.scalar("density")[a] = 1000.0;
-      w.boundary.scalar("mass")[a] = 1000.0 * dp * dp;
-      w.boundary.scalar("pressure")[a] = pressure(w.boundary.position()[a]);
-      w.boundary.body()[a] = 1;
-    }
+  const double p0 = kFloorP0;
+  auto pressure = [&](const Vec3& x) { return p0 * (1.0 + x.x / kFloorLength); };
+  fluid_on_floor(w, 1.3, pressure);
   // Patches of one wall column each (the default size, dp), away from the periodic seam where p jumps back.
   writers::ProbesWriter writer(params_from_json(writers::ProbesWriter::describe(), R"({
       "wall_sensors": [[0.31, 0.0], [0.71, 0.0]], "wall_sensor_normals": [[0, 1], [0, 2]],
