@@ -11,14 +11,14 @@
 
 namespace talus::coupling {
 
+Vec3 periods(const World& world) {
+  Vec3 period{};
+  for (int a = 0; a < 3; ++a) period[a] = world.periodic[a] ? world.hi[a] - world.lo[a] : 0.0;
+  return period;
+}
+
 Vec3 nearest_image(const World& world, const Vec3& p, const Vec3& near) {
-  Vec3 out = p;
-  for (int a = 0; a < 3; ++a)
-    if (world.periodic[a]) {
-      const double period = world.hi[a] - world.lo[a];
-      out[a] -= period * std::round((p[a] - near[a]) / period);
-    }
-  return out;
+  return near + minimum_image(p - near, periods(world));
 }
 
 Vec3 wrap_periodic(const World& world, Vec3 p) {

@@ -179,7 +179,7 @@ void BlockParticles::bind(World& world, const sph::FluidSettings& settings) {
     begin_.push_back(first);
     end_.push_back(first + points.size());
   }
-  for (int a = 0; a < 3; ++a) period_[a] = world.periodic[a] ? world.hi[a] - world.lo[a] : 0.0;
+  period_ = periods(world);
   cells_.assign(blocks_.size(), sph::NeighbourGrid{});
   for (auto& c : cells_) c.configure(world.dim, settings.lo, settings.hi, radius, world.periodic);
   thread_force_.assign(omp_get_max_threads(), Vec3{});

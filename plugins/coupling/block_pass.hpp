@@ -23,19 +23,13 @@
 
 #include <omp.h>
 
+#include "block_link.hpp"
 #include "talus/sph/neighbour_grid.hpp"
 #include "talus/kernel_table.hpp"
 #include "talus/sph/boundary_pass.hpp"
 #include "talus/sph/fluid_terms.hpp"
 
 namespace talus::coupling {
-
-// The minimum image of a separation d: each periodic component in [-L/2, L/2].
-inline Vec3 minimum_image(Vec3 d, const Vec3& period) {
-  for (int a = 0; a < 3; ++a)
-    if (period[a] > 0.0) d[a] -= period[a] * std::round(d[a] / period[a]);
-  return d;
-}
 
 struct BlockPassInput {
   const sph::FluidView& fluid;

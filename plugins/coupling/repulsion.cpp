@@ -47,7 +47,7 @@ void Repulsion::bind(World& world, const sph::FluidSettings&) {
   const int material = coupling_material(world, bodies_.front(), "block_repulsion", material_name_);
   const Material& mat = world.materials[material];
   r0_ = r0_param_ > 0.0 ? r0_param_ : world.dp;
-  for (int a = 0; a < 3; ++a) period_[a] = world.periodic[a] ? world.hi[a] - world.lo[a] : 0.0;
+  period_ = periods(world);
   const double m_ref = mat.density * std::pow(world.dp, world.dim);
   const double c0 = mat.eos ? mat.eos->reference_sound_speed() : 0.0;
   if (ks_param_ <= 0.0 && !(c0 > 0.0))
