@@ -15,10 +15,12 @@ std::string step_group(std::uint64_t index) { return "Step#" + std::to_string(in
 namespace {
 bool file_exists(const std::string& path) { return ::access(path.c_str(), F_OK) == 0; }
 
-// Frames 0.. of an existing file whose step attribute is <= last_step.
-std::vector<FrameInfo> frames_up_to(const std::string& path, std::uint64_t last_step) {
+// Frames 0.. of an existing file whose step attribute is <= last_step; `later`
+// tells whether the file holds more frames after them.
+std::vector<FrameInfo> frames_up_to(const std::string& path, std::uint64_t last_step, bool& later) {
   h5::QuietErrors quiet;
   std::vector<FrameInfo> out;
+  later = false;
   h5::Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   if (!file.valid()) return out;
   for (std::uint64_t n = 0;; ++n) {
@@ -26,7 +28,10 @@ std::vector<FrameInfo> frames_up_to(const std::string& path, std::uint64_t last_
     if (!h5::exists(file, name)) break;
     h5::Handle group(H5Gopen2(file, name.c_str(), H5P_DEFAULT), H5Gclose);
     FrameInfo f;
-    if (!group.valid() || !h5::read_attribute(group, "step", f.step) || f.step > last_step) break;
+    if (!group.valid() || !h5::read_attribute(group, "step", f.step) || f.step > last_step) {
+      later = true;
+      break;
+    }
     h5::read_attribute(group, "TimeValue", f.time);
     h5::read_attribute(group, "particles", f.particles);
     out.push_back(f);
@@ -46,7 +51,8 @@ void H5PartSeries::start(std::string path, bool sync, RootWriter root, const std
   frames_ = 0;
   resumed_.clear();
   ::unlink(previous_.c_str());  // left over from a crash between two renames
-  if (resume_step && file_exists(path_)) resumed_ = frames_up_to(path_, *resume_step);
+  published_has_later_ = false;
+  if (resume_step && file_exists(path_)) resumed_ = frames_up_to(path_, *resume_step, published_has_later_);
   frames_ = resumed_.size();
 }
 
@@ -107,8 +113,11 @@ void H5PartSeries::append(const FrameWriter& frame) {
 
   // Keep the old published copy (it lacks only this frame) as the next
   // working copy; without hard links the next frame rebuilds it from scratch.
+  // Not when it still holds the interrupted run's frames after a resume's: the
+  // next frame would meet its own name there.
   bool kept = false;
-  if (frames_ > 0) kept = ::link(path_.c_str(), previous_.c_str()) == 0;
+  if (frames_ > 0 && !published_has_later_) kept = ::link(path_.c_str(), previous_.c_str()) == 0;
+  published_has_later_ = false;
   working_exists_ = false;
   publish(working_, path_, sync_);
   frames_ = index + 1;

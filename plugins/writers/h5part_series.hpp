@@ -51,7 +51,6 @@ class H5PartSeries {
 
  private:
   void catch_up(hid_t working);
-  void recycle_published();
 
   std::string path_, working_, previous_;
   bool sync_ = true;
@@ -59,6 +58,7 @@ class H5PartSeries {
   std::uint64_t frames_ = 0;          // frames in the published file
   std::uint64_t working_frames_ = 0;  // frames already in the working copy
   bool working_exists_ = false;
+  bool published_has_later_ = false;  // a resume dropped frames still in the published file
   std::vector<FrameInfo> resumed_;
 };
 

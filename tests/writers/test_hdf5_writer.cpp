@@ -300,8 +300,12 @@ TEST(Hdf5Writer, ResumeKeepsFramesUpToTheCheckpointAndAppends) {
   auto writer = make_writer("{}");
   writer->open(test::context_for(dir.str(), true), w);
   writer->write(w);  // the host writes the checkpoint's state again: no duplicate
+  // Two frames more: the dropped frames 2 and 3 of the interrupted run must not come back nor collide.
   w.step = 100;
   w.time = 9.0;
+  writer->write(w);
+  w.step = 110;
+  w.time = 9.5;
   writer->write(w);
   writer->close(w);
 
@@ -310,7 +314,8 @@ TEST(Hdf5Writer, ResumeKeepsFramesUpToTheCheckpointAndAppends) {
   EXPECT_EQ(read_double_attribute(f.id, "Step#0", "TimeValue"), 1.0 / 3.0);
   EXPECT_EQ(read_double_attribute(f.id, "Step#1", "TimeValue"), 0.01 + 1.0 / 3.0);
   EXPECT_EQ(read_double_attribute(f.id, "Step#2", "TimeValue"), 9.0);
-  EXPECT_EQ(H5Lexists(f.id, "Step#3", H5P_DEFAULT), 0);
+  EXPECT_EQ(read_double_attribute(f.id, "Step#3", "TimeValue"), 9.5);
+  EXPECT_EQ(H5Lexists(f.id, "Step#4", H5P_DEFAULT), 0);
 }
 
 }  // namespace
