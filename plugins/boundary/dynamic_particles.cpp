@@ -7,6 +7,7 @@
 #include "talus/eos.hpp"
 #include "talus/error.hpp"
 #include "talus/geometry.hpp"
+#include "talus/periodic.hpp"
 #include "talus/sph/fluid_terms.hpp"
 #include "talus/sph/pair_loop.hpp"
 #include "talus/sph/wall_fields.hpp"
@@ -78,17 +79,6 @@ struct WallSums {
   double wsum = 0.0;  // Shepard weights
   Vec3 vsum;          // Shepard-weighted fluid velocity
 };
-
-// The wall's position wrapped into the period on periodic axes (a wall moving
-// along a periodic axis, e.g. the lid of a Couette cell).
-Vec3 wrap_periodic(Vec3 x, const World& world) {
-  for (int a = 0; a < world.dim; ++a)
-    if (world.periodic[a]) {
-      const double period = world.hi[a] - world.lo[a];
-      x[a] -= period * std::floor((x[a] - world.lo[a]) / period);
-    }
-  return x;
-}
 
 }  // namespace
 
@@ -326,7 +316,8 @@ void DynamicParticles::advance_walls(World& world, double time, double dt) {
 #pragma omp parallel for schedule(static) if (count_ >= 4096)
     for (std::size_t b = 0; b < count_; ++b) {
       const PrescribedMotion& motion = motion_[slot_of_body_[w.body[b]]];
-      w.x[b] = wrap_periodic(motion.position(w.x0[b], time), world);
+      // A wall moving along a periodic axis (the lid of a Couette cell) stays in the period.
+      w.x[b] = wrap_periodic(world, motion.position(w.x0[b], time));
       w.v[b] = motion.velocity(w.x0[b], time);
     }
   }

@@ -11,26 +11,6 @@
 
 namespace talus::coupling {
 
-Vec3 periods(const World& world) {
-  Vec3 period{};
-  for (int a = 0; a < 3; ++a) period[a] = world.periodic[a] ? world.hi[a] - world.lo[a] : 0.0;
-  return period;
-}
-
-Vec3 nearest_image(const World& world, const Vec3& p, const Vec3& near) {
-  return near + minimum_image(p - near, periods(world));
-}
-
-Vec3 wrap_periodic(const World& world, Vec3 p) {
-  for (int a = 0; a < 3; ++a)
-    if (world.periodic[a]) {
-      const double period = world.hi[a] - world.lo[a];
-      p[a] -= period * std::floor((p[a] - world.lo[a]) / period);
-      if (p[a] >= world.hi[a]) p[a] = world.lo[a];  // round-off of a point just below lo
-    }
-  return p;
-}
-
 std::vector<std::size_t> find_blocks(const World& world, std::span<const int> bodies, const std::string& model) {
   std::vector<std::size_t> out;
   for (int bi : bodies) {

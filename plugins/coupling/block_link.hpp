@@ -4,32 +4,17 @@
 // the start, and handing the fluid's force to the blocks exactly once per step.
 #pragma once
 
-#include <cmath>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "talus/periodic.hpp"
 #include "talus/vec3.hpp"
-
-namespace talus {
-class World;
-}
 
 namespace talus::coupling {
 
-// Periodic axes (the dda stage does not wrap blocks, so a block may straddle
-// a periodic boundary): the domain's length on each periodic axis (0 on closed
-// ones); the minimum image of a separation d (each periodic component in
-// [-L/2, L/2]; per particle in the block passes, so the periods come in
-// precomputed); the image of p nearest `near`; p wrapped into [lo, hi).
-Vec3 periods(const World& world);
-inline Vec3 minimum_image(Vec3 d, const Vec3& period) {
-  for (int a = 0; a < 3; ++a)
-    if (period[a] > 0.0) d[a] -= period[a] * std::round(d[a] / period[a]);
-  return d;
-}
-Vec3 nearest_image(const World& world, const Vec3& p, const Vec3& near);
-Vec3 wrap_periodic(const World& world, Vec3 p);
+// Periodic axes: talus/periodic.hpp (the dda stage does not wrap blocks, so a
+// block may straddle a periodic boundary and the passes use minimum images).
 
 // Index in world.blocks of each body; throws InputError naming /pipeline when
 // the dda stage has not set up yet (it must be listed before the fluid stage).
