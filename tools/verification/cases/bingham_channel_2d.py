@@ -26,9 +26,9 @@ M = 2000.0  # the scene's Papanastasiou exponent (s)
 # Plug width from the velocity profile, the measure of herschel_bulkley_channel_2d (there gated at L/40): the
 # half-width where u >= (1 - EPS) u_c, on the SPH profile and on the exact regularised one alike (EPS = 0.05: the
 # regularised and ideal widths differ by 4 % there, 10 % at 0.02 where the regularised plug's creep shows).
-# Reported, not gated: measured 2026-11-22 33.8 %, 23.1 %, 16.9 % narrow at L/10, L/15, L/20 (order ~1.1; the
-# yielded layer H - s0 is 5 dp at L/20 and the fluid-only velocity gradient underestimates |D| in the kernel
-# support next to the wall). 3 % would need rungs far beyond the ladder's cost. (The stress-based width it
+# Reported, not gated: measured 2026-11-22 33.8 %, 23.1 %, 16.9 % narrow at L/10, L/15, L/20 (order ~1.1: the
+# kernel smooths the regularised viscosity's jump at the plug edge, which creeps; hbp_bingham_limit_2d follows the
+# same width to L/60 and gates it there). 3 % would need rungs far beyond this ladder's cost. (The stress-based width it
 # replaces, where mu_eff |D| = tau_y, read 14-30 % narrow: the regularised stress blurs the edge.)
 EPS = 0.05
 QUICK_INDEX = 2  # the rung that carries the tolerance
