@@ -2,6 +2,15 @@
 import numpy as np
 
 
+def read_csv(path):
+    """dict column -> numpy array of a CSV with '#' comment lines and a header row (probes output, reference data)."""
+    with open(path) as f:
+        lines = [line for line in f if line.strip() and not line.startswith("#")]
+    names = lines[0].strip().split(",")
+    data = np.array([[float(v) for v in line.strip().split(",")] for line in lines[1:]])
+    return {n: data[:, k] for k, n in enumerate(names)}
+
+
 def set_dp(scene, dp, kinds=("fluid", "wall")):
     """Sets every fluid/wall body's particle spacing."""
     for body in scene["bodies"]:

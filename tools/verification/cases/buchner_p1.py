@@ -32,7 +32,7 @@ import os
 
 import numpy as np
 
-from verification.cases._util import set_dp
+from verification.cases._util import read_csv, set_dp
 
 NAME = "buchner_p1"
 TITLE = "2D dam break against a wall (Buchner 2002), wall pressure at P1 (y = 0.2H)"
@@ -66,17 +66,9 @@ def configure(scene, dp, option):
     return scene
 
 
-def _read(path):
-    with open(path) as f:
-        lines = [line for line in f if line.strip() and not line.startswith("#")]
-    names = lines[0].strip().split(",")
-    rows = np.array([[float(v) for v in line.split(",")] for line in lines[1:]])
-    return {n: rows[:, k] for k, n in enumerate(names)}
-
-
 def measured():
     """(t sqrt(g/H), p / (rho g H)) of the measurement, sorted by time."""
-    rows = _read(DATA)
+    rows = read_csv(DATA)
     t, p = rows["t_star"], rows["p_over_rhogH"]
     order = np.argsort(t, kind="stable")
     return t[order], p[order]
@@ -84,7 +76,7 @@ def measured():
 
 def simulated(run, column="P1_pressure"):
     files = [f for f in run.output_files("probes") if f.endswith("p1.csv")]
-    rows = _read(files[0])
+    rows = read_csv(files[0])
     return rows["time"] * math.sqrt(G / H), rows[column] / (RHO0 * G * H)
 
 

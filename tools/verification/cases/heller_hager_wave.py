@@ -38,7 +38,7 @@ import math
 
 import numpy as np
 
-from verification.cases._util import block_frames, penetration_depth
+from verification.cases._util import block_frames, penetration_depth, read_csv
 
 NAME = "heller_hager_wave"
 TITLE = ("Landslide wave (3D SPH-DDA, quasi-2D slab): a 2500 kg/m^3 wedge slides down 45 degrees into 0.2 m of "
@@ -155,15 +155,6 @@ def configure(scene, dp, option):
 # ---- measurements --------------------------------------------------------------------------------------------
 
 
-def read_probes(path):
-    """dict column -> numpy array of a probes CSV."""
-    with open(path) as f:
-        lines = [line for line in f if not line.startswith("#")]
-    names = lines[0].strip().split(",")
-    data = np.array([[float(v) for v in line.strip().split(",")] for line in lines[1:] if line.strip()])
-    return {n: data[:, i] for i, n in enumerate(names)}
-
-
 # The gauge reports the highest point where the kernel fill fraction crosses 1/2 on its vertical line, so a clump
 # of splash flying over it (the faster slides throw spray off the wave at x/h = 2-3) reads as a spike of up to
 # 0.2 m lasting 2-3 samples (10-15 ms), which no wave crest does (crests last ~0.3 s here). A running median over
@@ -230,7 +221,7 @@ def _measure(run):
     files = [f for f in run.output_files("probes") if f.endswith(".csv")]
     if not files:
         raise RuntimeError("the run wrote no probes output")
-    record = read_probes(files[-1])
+    record = read_csv(files[-1])
     crests, raw = {}, {}
     for k in GAUGES_X_OVER_H:
         eta = record[f"x{k}h_elevation"]

@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from verification.cases._util import set_dp
+from verification.cases._util import read_csv, set_dp
 
 NAME = "wavemaker_piston_2d"
 TITLE = "Piston wavemaker, 2D, moving dynamic boundary particles: H/S against Biesel's linear theory"
@@ -74,20 +74,11 @@ def stroke(scene):
     return 2.0 * (depth(scene) - hinge["point"][1]) * math.sin(hinge["amplitude"])
 
 
-def read_gauges(path):
-    """dict column -> numpy array of a probes CSV."""
-    with open(path) as f:
-        lines = [line for line in f if not line.startswith("#")]
-    names = lines[0].strip().split(",")
-    data = np.array([[float(v) for v in line.strip().split(",")] for line in lines[1:] if line.strip()])
-    return {n: data[:, i] for i, n in enumerate(names)}
-
-
 def gauge_record(run):
     files = [f for f in run.output_files("probes") if f.endswith(".csv")]
     if not files:
         raise RuntimeError("the run wrote no probes output")
-    return read_gauges(files[-1])
+    return read_csv(files[-1])
 
 
 def first_harmonic(t, eta, omega, window=WINDOW):
