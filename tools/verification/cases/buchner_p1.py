@@ -24,6 +24,13 @@ Measured (wall sensor; plateau 0.541 measured; impact 2.512 measured; wall time 
   dp = H/30: plateau 0.511 (-5.5 %), impact 2.701 (+7.5 %), fluid probe 0.326, peak 1.22,                164 s
   dp = H/40: plateau 0.584 (+8.0 %), impact 2.596 (+3.4 %), fluid probe 0.356, peak 0.89,                227 s
   dp = H/60: plateau 0.600 (+10.9 %), impact 2.539 (+1.1 %), fluid probe 0.394, peak 0.80,              1198 s
+The rise itself is late and the peak high with these walls (0.05 s mean at H/40: 0.14 at t sqrt(g/H) = 2.6, 0.51 at
+3.0, 0.80 at 3.2, against 0.60-0.69 measured over 2.63-2.74). A wall whose pressure is extrapolated from the fluid at
+every evaluation (Adami et al. 2012, eq. 27; tried, not adopted) removes the gap: the fluid probe then reads the wall
+load (0.50 and 0.50 at H/30) and the plateau is 0.49-0.52 at H/20-H/40. But it misses the impact: the load reaches
+0.4-0.5 only at t sqrt(g/H) = 3.0-3.8 (and swings negative before that when the fluid-wall pressure term may only
+push), and fluid particles crossed the wall surface of the tank: 1, 10 and 66 at H/20, H/30, H/40 with the published
+form, 2-3 with the push-only term (at most 0.2 dp beyond the surface).
 The sensor height matters: Adami et al. (2012) and TrixiParticles centre P1 at ~0.26H (Greco's shift); there the
 wall sensor reads 0.529 at H/30 (0.2H: 0.511).
 """
