@@ -15,22 +15,29 @@ model (it is a repulsion pressure, not the fluid's).
 
 error(): relative error of the mean pressure over t sqrt(g/H) in [4, 5] (the quasi-steady plateau after the
 run-up has fallen back, before the overturning jet returns near 5.5); a gate holds the impact time (first
-p > 0.25 rho g H, above the +-0.16 noise of the measurement before the impact) within 10 %. The impact peak is
-reported, not gated: a weakly compressible model's peak is an acoustic spike of the particle spacing and the
-sampling, not the transducer's filtered value.
+p > 0.25 rho g H, above the +-0.16 noise of the measurement before the impact) within 10 %. A gate holds the impact
+peak (largest 0.05 s running mean of the load over 2 < t sqrt(g/H) < 4; 0.05 s spans the whole measured rise, so it
+filters the acoustic ringing of a weakly compressible model, not the impact) within 25 % of the measured maximum
+0.69, at H/60 and finer: at H/20-H/40 the dynamic-boundary wall overshoots the peak by 25-76 % (reported there,
+not gated); from H/60 on the peak is in the band (+16, -9, -12 % at H/60, H/80, H/120).
 
 Measured (wall sensor; plateau 0.541 measured; impact 2.512 measured; wall time on a shared 2-core machine, 1 thread):
   dp = H/20: plateau 0.577 (+6.7 %), impact 2.669 (+6.2 %), fluid probe 0.190, peak (0.05 s mean) 0.86,   35 s
   dp = H/30: plateau 0.511 (-5.5 %), impact 2.701 (+7.5 %), fluid probe 0.326, peak 1.22,                164 s
   dp = H/40: plateau 0.584 (+8.0 %), impact 2.596 (+3.4 %), fluid probe 0.356, peak 0.89,                227 s
-  dp = H/60: plateau 0.600 (+10.9 %), impact 2.539 (+1.1 %), fluid probe 0.394, peak 0.80,              1198 s
-The rise itself is late and the peak high with these walls (0.05 s mean at H/40: 0.14 at t sqrt(g/H) = 2.6, 0.51 at
-3.0, 0.80 at 3.2, against 0.60-0.69 measured over 2.63-2.74). A wall whose pressure is extrapolated from the fluid at
-every evaluation (Adami et al. 2012, eq. 27; tried, not adopted) removes the gap: the fluid probe then reads the wall
-load (0.50 and 0.50 at H/30) and the plateau is 0.49-0.52 at H/20-H/40. But it misses the impact: the load reaches
-0.4-0.5 only at t sqrt(g/H) = 3.0-3.8 (and swings negative before that when the fluid-wall pressure term may only
-push), and fluid particles crossed the wall surface of the tank: 1, 10 and 66 at H/20, H/30, H/40 with the published
-form, 2-3 with the push-only term (at most 0.2 dp beyond the surface).
+  dp = H/60: plateau 0.600 (+10.9 %), impact 2.539 (+1.1 %), fluid probe 0.394, peak 0.80 (+16 %),     256 s
+  dp = H/80: plateau 0.587 (+8.6 %), impact 2.523 (+0.4 %), fluid probe 0.416, peak 0.63 (-9 %),        603 s
+  dp = H/120: plateau 0.595 (+10.0 %), impact 2.661 (+5.9 %), fluid probe 0.450, peak 0.60 (-12 %), 1108 s (2 threads)
+(H/20-H/40 timed on a shared machine, H/60-H/120 on an idle one.) The peak settles near 0.60, 12 % under the
+measured 0.69 and the published delta-SPH's 0.67-0.70.
+The rise itself is slower than measured (0.05 s mean at H/40: 0.14 at t sqrt(g/H) = 2.6, 0.51 at 3.0, 0.80 at 3.2;
+at H/80: 0.22 at 2.7, 0.48 at 2.8, 0.58 at 2.9; measured 0.60-0.69 over 2.63-2.74; the delta-SPH of Marrone et al.
+2011 at H/40-H/320 reaches 0.6 at 2.73-2.76, as digitised in TrixiParticles.jl's validation data). A wall whose
+pressure is extrapolated from the fluid at every evaluation (Adami et al. 2012, eq. 27; tried, not adopted) removes
+the gap: the fluid probe then reads the wall load (0.50 and 0.50 at H/30) and the plateau is 0.49-0.52 at H/20-H/40.
+But it misses the impact: the load reaches 0.4-0.5 only at t sqrt(g/H) = 3.0-3.8 (and swings negative before that
+when the fluid-wall pressure term may only push), and fluid particles crossed the wall surface of the tank: 1, 10
+and 66 at H/20, H/30, H/40 with the published form, 2-3 with the push-only term (at most 0.2 dp beyond the surface).
 The sensor height matters: Adami et al. (2012) and TrixiParticles centre P1 at ~0.26H (Greco's shift); there the
 wall sensor reads 0.529 at H/30 (0.2H: 0.511).
 """
@@ -44,8 +51,8 @@ from verification.cases._util import read_csv, set_dp
 NAME = "buchner_p1"
 TITLE = "2D dam break against a wall (Buchner 2002), wall pressure at P1 (y = 0.2H)"
 SCENE = "share/scenes/dam_break_2d_buchner.json"
-LADDER = [0.03, 0.02, 0.015]  # H/20, H/30, H/40
-TOLERANCE = {0.03: 0.25, 0.02: 0.25, 0.015: 0.25}
+LADDER = [0.03, 0.02, 0.015, 0.01, 0.0075, 0.005]  # H/20, H/30, H/40, H/60, H/80, H/120
+TOLERANCE = {0.03: 0.25, 0.02: 0.25, 0.015: 0.25, 0.01: 0.25, 0.0075: 0.25, 0.005: 0.25}
 ERROR_LABEL = "|mean p_P1 - mean p_exp| / mean p_exp over t sqrt(g/H) in [4, 5] (wall sensor)"
 REFERENCE = "Buchner (2002) P1, digitised in pypr/pysph (shared/validation-data/dambreak2d_buchner2002_P1_pysph.csv)"
 # The plateau's error is set by the measurement's scatter and the wall model's load noise, not by dp along this
@@ -56,6 +63,8 @@ G, H, RHO0, LENGTH = 9.81, 0.6, 1000.0, 3.2196
 SENSOR_Y = 0.2 * H
 PLATEAU = (4.0, 5.0)
 IMPACT_LEVEL = 0.25  # p / (rho g H)
+PEAK_TOLERANCE = 0.25
+PEAK_GATED_FROM = 0.01  # dp = H/60: the coarser rungs' wall overshoot is reported, not gated
 DATA = os.path.join(os.path.dirname(__file__), "..", "..", "..", "..", "shared", "validation-data",
                     "dambreak2d_buchner2002_P1_pysph.csv")
 
@@ -102,15 +111,25 @@ def error(run):
     return abs(plateau(*simulated(run)) - plateau(*measured())) / plateau(*measured())
 
 
+def peak(t, p):
+    """Largest 0.05 s running mean over 2 < t sqrt(g/H) < 4 of a series sampled every 0.002 s (the probes' "every")."""
+    smooth = np.convolve(np.nan_to_num(p), np.ones(25) / 25, mode="same")
+    return float(smooth[(t > 2.0) & (t < 4.0)].max())
+
+
 def gates(run):
     t, p = simulated(run)
     te, pe = measured()
     ti, tie = impact_time(t, p), impact_time(te, pe)
     fluid = plateau(*simulated(run, "P1_fluid_pressure"))
-    smooth = np.convolve(np.nan_to_num(p), np.ones(25) / 25, mode="same")  # 0.05 s running mean
-    window = (t > 2.0) & (t < 4.0)
+    simulated_peak, measured_peak = peak(t, p), float(pe[(te > 2.0) & (te < 4.0)].max())
+    peak_error = (simulated_peak - measured_peak) / measured_peak
+    peak_gated = run.resolution <= PEAK_GATED_FROM * (1 + 1e-9)
     return [("impact time within 10 % (first p > 0.25 rho g H)", abs(ti - tie) <= 0.10 * tie,
              f"t sqrt(g/H) = {ti:.3f} vs {tie:.3f} measured ({(ti - tie) / tie:+.1%}); plateau {plateau(t, p):.3f} "
-             f"vs {plateau(te, pe):.3f}, fluid probe dp/2 off the wall {fluid:.3f}; impact peak "
-             f"(0.05 s mean) {smooth[window].max():.2f} vs {pe[(te > 2.0) & (te < 4.0)].max():.2f}"),
+             f"vs {plateau(te, pe):.3f}, fluid probe dp/2 off the wall {fluid:.3f}"),
+            (f"impact peak (0.05 s mean) within {PEAK_TOLERANCE:.0%} of the measured maximum"
+             + ("" if peak_gated else " (not gated at this rung)"),
+             bool(not peak_gated or abs(peak_error) <= PEAK_TOLERANCE),
+             f"{simulated_peak:.2f} vs {measured_peak:.2f} ({peak_error:+.0%})"),
             ("no particle lost", run.summary.get("removed", 0) == 0, f"{run.summary.get('removed', 0)} removed")]
