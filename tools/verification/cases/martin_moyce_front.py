@@ -33,7 +33,10 @@ What was checked (the numbers the issue asked for, dp = a/20 | a/40, mean |Z_sim
     examples (db_exp_data.py, not in shared/validation-data), lies slower still: 9.2 % | 11.4 %.
   - Remaining likely cause, outside the model: the release of the column in the experiment (the barrier's removal
     takes a finite time; published SPH and MPS results lead by a similar offset). It is not corrected for: a time
-    shift fitted to the data would be tuning.
+    shift fitted to the data would be tuning. One check on that cause: fitted to each column size alone (a/50),
+    the best shift is Delta T = 0.235 for a = 1.125 in and 0.265 for a = 2.25 in (9 and 14 ms). A release of
+    fixed duration would give the small column a lead sqrt(2) times larger in T, so if the release is the cause,
+    its duration grew with the column (4-5 points per size: a weak test).
 """
 import math
 import os
