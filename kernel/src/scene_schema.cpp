@@ -47,7 +47,9 @@ ParamSet body_params() {
   b.real("dp").unit("m").greater_than(0.0).optional().doc("particle spacing (fluid and wall bodies)");
   declare_shape(b);
   b.vector("velocity").unit("m/s").default_value({0.0, 0.0, 0.0}, {0.0, 0.0}).doc("initial velocity");
-  b.boolean("hydrostatic").default_value(false).doc("fluid: start with hydrostatic pressure and density");
+  b.boolean("hydrostatic").default_value(false).doc(
+      "fluid: start with the pressure of the fluid above each particle (every fluid body's weight: a layer under "
+      "another body carries it; a body above an air gap does not) and the density the eos gives at it");
   b.model("boundary", "boundary").optional().doc("wall or block: how its surface acts on the fluid");
   b.integer("layers").min(1).optional().doc("wall: layers of wall particles (default: enough to cover the kernel)");
   b.real("density").unit("kg/m^3").greater_than(0.0).optional().doc("block: density of the rock");

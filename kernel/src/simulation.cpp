@@ -28,6 +28,7 @@
 #include "talus/eos.hpp"
 #include "talus/error.hpp"
 #include "talus/geometry.hpp"
+#include "talus/hydrostatic.hpp"
 #include "talus/rheology.hpp"
 #include "talus/smoothing_kernel.hpp"
 #include "talus/stage.hpp"
@@ -125,6 +126,35 @@ void Simulation::build_kernel() {
   models_.push_back(std::move(kernel));
 }
 
+namespace {
+
+// "hydrostatic": true: the bodies that ask for it start with the pressure of
+// the fluid above them, every fluid body's weight included (talus/hydrostatic.hpp),
+// and the density their equation of state gives at that pressure.
+void start_hydrostatic(World& world, const std::vector<ParamValues>& bodies) {
+  bool any = false;
+  for (const ParamValues& v : bodies) any = any || (v.string("kind") == "fluid" && v.boolean("hydrostatic"));
+  if (!any) return;
+  ParticleStore& fluid = world.fluid;
+  const auto body = fluid.body();
+  const auto material = fluid.material();
+  std::vector<double> spacing(fluid.size()), density(fluid.size());
+  for (std::size_t i = 0; i < fluid.size(); ++i) {
+    spacing[i] = world.bodies[body[i]].dp;
+    density[i] = world.materials[material[i]].density;
+  }
+  const std::vector<double> p = hydrostatic_pressure(fluid.position(), spacing, density, world.gravity, world.dim);
+  auto pressure = fluid.scalar("pressure");
+  auto rho = fluid.scalar("density");
+  for (std::size_t i = 0; i < fluid.size(); ++i) {
+    if (!bodies[body[i]].boolean("hydrostatic")) continue;
+    pressure[i] = p[i];
+    rho[i] = world.materials[material[i]].eos->density_at(p[i]);
+  }
+}
+
+}  // namespace
+
 void Simulation::build_bodies() {
   const auto& bodies = scene_.values.objects("bodies");
   ParticleStore& fluid = world_.fluid;
@@ -163,14 +193,8 @@ void Simulation::build_bodies() {
       auto mid = fluid.material();
       const Vec3 u0 = v.vector("velocity");
       const double particle_mass = m.density * std::pow(body.dp, world_.dim);
-      // Hydrostatic start: depth below the body's highest particle along g.
-      const double g = norm(world_.gravity);
-      const Vec3 up = g > 0 ? -world_.gravity / g : Vec3{};
-      double top = -std::numeric_limits<double>::infinity();
-      for (const auto& q : points) top = std::max(top, dot(q, up));
-      top += 0.5 * body.dp;
-      const bool hydrostatic = v.boolean("hydrostatic");
-      if (hydrostatic && !m.eos) v.fail("hydrostatic", "needs the material '" + m.name + "' to have an \"eos\"");
+      if (v.boolean("hydrostatic") && !m.eos)
+        v.fail("hydrostatic", "needs the material '" + m.name + "' to have an \"eos\"");
       for (std::size_t k = 0; k < points.size(); ++k) {
         const std::size_t i = first + k;
         x[i] = points[k];
@@ -178,8 +202,8 @@ void Simulation::build_bodies() {
         mass[i] = particle_mass;
         bid[i] = static_cast<std::int32_t>(bi);
         mid[i] = body.material;
-        p[i] = hydrostatic ? m.density * g * (top - dot(points[k], up)) : 0.0;
-        rho[i] = hydrostatic ? m.eos->density_at(p[i]) : m.density;
+        p[i] = 0.0;
+        rho[i] = m.density;
       }
     }
     if (v.has("boundary")) {  // walls, and blocks that the fluid sees
@@ -193,6 +217,7 @@ void Simulation::build_bodies() {
       models_.push_back(std::move(contact));
     }
   }
+  start_hydrostatic(world_, bodies);
   for (std::size_t bi = 0; bi < world_.bodies.size(); ++bi)
     if (world_.bodies[bi].boundary) {
       const int index = static_cast<int>(bi);
