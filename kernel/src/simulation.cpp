@@ -132,9 +132,10 @@ namespace {
 // the fluid above them, every fluid body's weight included (talus/hydrostatic.hpp),
 // and the density their equation of state gives at that pressure.
 void start_hydrostatic(World& world, const std::vector<ParamValues>& bodies) {
-  bool any = false;
-  for (const ParamValues& v : bodies) any = any || (v.string("kind") == "fluid" && v.boolean("hydrostatic"));
-  if (!any) return;
+  std::vector<char> hydrostatic(bodies.size());
+  for (std::size_t b = 0; b < bodies.size(); ++b)
+    hydrostatic[b] = bodies[b].string("kind") == "fluid" && bodies[b].boolean("hydrostatic");
+  if (std::find(hydrostatic.begin(), hydrostatic.end(), 1) == hydrostatic.end()) return;
   ParticleStore& fluid = world.fluid;
   const auto body = fluid.body();
   const auto material = fluid.material();
@@ -147,7 +148,7 @@ void start_hydrostatic(World& world, const std::vector<ParamValues>& bodies) {
   auto pressure = fluid.scalar("pressure");
   auto rho = fluid.scalar("density");
   for (std::size_t i = 0; i < fluid.size(); ++i) {
-    if (!bodies[body[i]].boolean("hydrostatic")) continue;
+    if (!hydrostatic[body[i]]) continue;
     pressure[i] = p[i];
     rho[i] = world.materials[material[i]].eos->density_at(p[i]);
   }
