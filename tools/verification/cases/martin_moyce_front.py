@@ -43,14 +43,14 @@ import os
 
 import numpy as np
 
-from verification.cases._util import frames, set_dp
+from verification.cases._util import frames, read_csv, set_dp
 
 NAME = "martin_moyce_front"
 TITLE = "2D dam break (column height 2a), surge front against Martin & Moyce (1952)"
 SCENE = "share/scenes/dam_break_2d_martin_moyce.json"
-# a/20, a/25, a/40, a/50: spacings that divide a and 2a, so the column is exactly a wide and 2a high (the host fills a box
-# with round(L/dp) particles per axis: dp = 0.0035 gave 29 dp = 1.015a, a front at Z = 1.015 at T = 0, ahead of
-# Ritter's bound, and 1.25 % too much water).
+# a/20, a/25, a/40, a/50: spacings that divide a and 2a, so the column is exactly a wide and 2a high (the host fills
+# a box with round(L/dp) particles per axis: dp = 0.0035 gave 29 dp = 1.015a, a front at Z = 1.015 at T = 0, ahead
+# of Ritter's bound, and 1.25 % too much water).
 LADDER = [0.005, 0.004, 0.0025, 0.002]
 # The two measured column sizes differ by about 7 %: that spread is the tolerance.
 TOLERANCE = {dp: 0.07 for dp in LADDER}
@@ -76,14 +76,19 @@ def configure(scene, dp, option):
     return scene
 
 
+MEASURED = ("dambreak_martin_moyce1952_n2eq2_a1.125in.csv", "dambreak_martin_moyce1952_n2eq2_a2.25in.csv")
+
+
+def measured_series(name):
+    """(T, Z) of one measured column size, every point."""
+    rows = read_csv(os.path.join(DATA, name))
+    return rows["T"], rows["Z"]
+
+
 def measured():
-    points = []
-    for name in ("dambreak_martin_moyce1952_n2eq2_a1.125in.csv", "dambreak_martin_moyce1952_n2eq2_a2.25in.csv"):
-        with open(os.path.join(DATA, name)) as f:
-            rows = [line.split(",") for line in f if line.strip() and not line.startswith("#")]
-        data = [(float(t), float(z)) for t, z in rows[1:]]  # first row: the header
-        points += [(t, z) for t, z in data if t <= 3.0]
-    return np.array(points)
+    """(T, Z) points of both column sizes with T <= 3."""
+    points = np.concatenate([np.column_stack(measured_series(name)) for name in MEASURED])
+    return points[points[:, 0] <= 3.0]
 
 
 def connected(x, y, dp):
@@ -149,11 +154,7 @@ def gates(run):
     t = T / math.sqrt(2 * G / A)
     ritter = 1.0 + 2.0 * math.sqrt(G * 2 * A) * t / A
     data = measured()
-    speeds = []
-    for name in ("dambreak_martin_moyce1952_n2eq2_a1.125in.csv", "dambreak_martin_moyce1952_n2eq2_a2.25in.csv"):
-        with open(os.path.join(DATA, name)) as f:
-            rows = [line.split(",") for line in f if line.strip() and not line.startswith("#")][1:]
-        speeds.append(slope(np.array([float(r[0]) for r in rows]), np.array([float(r[1]) for r in rows])))
+    speeds = [slope(*measured_series(name)) for name in MEASURED]
     speed = slope(T, Z)
     # Diagnostic: the constant time shift that best aligns the curves, and what it leaves (not the error).
     shifts = np.arange(0.0, 0.4001, 0.01)
