@@ -2,16 +2,18 @@
 // high, dynamic boundary particles. Reference: the surge-front position
 // Z = z/a against T = t sqrt(2g/a) measured for two column sizes
 // (validation-data/dambreak_martin_moyce1952_n2eq2_a*.csv).
+// The experiment's time origin lags an instantaneous release: converged
+// Navier-Stokes solutions (OpenFOAM interFoam, Lethe's VOF) lead the data by the
+// same constant offset, and the published correction Delta T = 0.175 (Lethe's
+// Martin & Moyce example) is applied to the measured times before comparing
+// (tools/verification/cases/martin_moyce_front.py says more).
 // Gates:
-//  - never ahead of Ritter's ideal front z = a + 2 sqrt(g 2a) t (Z = 1 + 2T);
-//  - front speed dZ/dT over 1.5 <= T <= 3 within the two measured speeds +-7 %;
-//  - front position: with the DualSPHysics settings (alpha = 0.1), within the
-//    measured spread +-12 % for 1 <= T < 2 and +-7 % for 2 <= T <= 3. The
-//    nearly inviscid solution (alpha = 0.01) runs ahead of the measurements at
-//    early T by a constant time offset (about Delta T = 0.15-0.2, the gate
-//    release of the experiment; published SPH and MPS results show the same),
-//    up to 15 % at T = 1-1.5: that run is held to the Ritter bound, the front
-//    speed and a 16 % position band;
+//  - never ahead of Ritter's ideal front z = a + 2 sqrt(g 2a) t (Z = 1 + 2T),
+//    in simulated time;
+//  - front position for 1 <= T <= 3 within the measured spread +-7 %, the
+//    issue's tolerance (the two column sizes differ by about that much);
+//  - front speed dZ/dT over 1.5 <= T <= 3 within the two measured speeds +-7 %
+//    (free of any time origin);
 //  - mass is conserved and no particle leaves the tank.
 #include <gtest/gtest.h>
 
@@ -120,20 +122,23 @@ double slope(const std::vector<double>& T, const std::vector<double>& Z, double 
   return (n * stz - st * sz) / (n * stt - st * st);
 }
 
-void expect_martin_moyce(const FrontHistory& h, double early_band, double late_band) {
+// The measured front's time origin lags an instantaneous release by this much in T (header).
+constexpr double kReleaseOffset = 0.175;
+
+void expect_martin_moyce(const FrontHistory& h) {
   const Curve small = read_csv("dambreak_martin_moyce1952_n2eq2_a1.125in.csv");
   const Curve large = read_csv("dambreak_martin_moyce1952_n2eq2_a2.25in.csv");
   ASSERT_GE(small.t.size(), 5u);
   ASSERT_GE(large.t.size(), 5u);
+  const double band = 0.07;
   int compared = 0;
   double worst = 0.0;
   for (std::size_t k = 0; k < h.T.size(); ++k) {
-    const double T = h.T[k], Z = h.Z[k];
-    EXPECT_LE(Z, 1.0 + 2.0 * T + 1e-9) << "ahead of Ritter's front at T = " << T;
+    const double T = h.T[k] + kReleaseOffset, Z = h.Z[k];  // T on the experiment's clock
+    EXPECT_LE(Z, 1.0 + 2.0 * h.T[k] + 1e-9) << "ahead of Ritter's front at simulated T = " << h.T[k];
     if (T < 1.0 || T > 3.0) continue;
     const double zs = small.at(T), zl = large.at(T);
     if (std::isnan(zs) || std::isnan(zl)) continue;
-    const double band = T >= 2.0 ? late_band : early_band;
     const double lo = std::min(zs, zl), hi = std::max(zs, zl);
     EXPECT_GE(Z, lo * (1 - band)) << "front behind the measurements at T = " << T;
     EXPECT_LE(Z, hi * (1 + band)) << "front ahead of the measurements at T = " << T;
@@ -142,7 +147,6 @@ void expect_martin_moyce(const FrontHistory& h, double early_band, double late_b
     if (k % 10 == 0) std::printf("  T %.2f  Z %.3f  measured %.3f .. %.3f\n", T, Z, lo, hi);
   }
   EXPECT_GT(compared, 20);
-  // Front speed, free of the time-origin offset.
   const double speed = slope(h.T, h.Z, 1.5, 3.0);
   const double speed_small = slope(small.t, small.z, 1.5, 3.0), speed_large = slope(large.t, large.z, 1.5, 3.0);
   std::printf("  front speed dZ/dT over 1.5..3: %.3f, measured %.3f (a = 1.125 in) and %.3f (a = 2.25 in); "
@@ -156,11 +160,11 @@ void expect_martin_moyce(const FrontHistory& h, double early_band, double late_b
 }
 
 TEST(DamBreakMartinMoyce, FrontSymplecticArtificialViscosity) {
-  expect_martin_moyce(run_martin_moyce(0.1, 25, "{}", 3.2), 0.16, 0.16);
+  expect_martin_moyce(run_martin_moyce(0.1, 25, "{}", 3.2));
 }
 
 TEST(DamBreakMartinMoyce, FrontVerletDualSPHysicsSettings) {
-  expect_martin_moyce(run_martin_moyce(0.1, 25, R"({"integrator": "verlet", "alpha": 0.1})", 3.2), 0.12, 0.07);
+  expect_martin_moyce(run_martin_moyce(0.1, 25, R"({"integrator": "verlet", "alpha": 0.1})", 3.2));
 }
 
 }  // namespace
