@@ -26,6 +26,23 @@ KernelTable::KernelTable(const SmoothingKernel& kernel, int dim, double h, int s
     if (has_laplacian_) lap_[k] = lap_scale * kernel.laplacian_shape(q);
   }
   // Entries size_ and size_+1 stay zero: every kernel vanishes at its support.
+
+  // dW/dr / r over r^2. Bounded at r = 0 when g(q)/q tends to a limit (g(0) = 0 with a finite slope): then the
+  // first entry is that limit, read at a q far below the table spacing.
+  const double q_small = 1e-7 * dq;
+  const double limit = kernel.gradient_shape(q_small) / q_small;
+  gradient_by_r2_ = std::isfinite(limit) && std::abs(kernel.gradient_shape(0.0)) <= 1e-12 * std::abs(limit);
+  if (gradient_by_r2_) {
+    size_r2_ = 2 * size;
+    const double ds = support_ * support_ / size_r2_;  // in units of h^2
+    inv_dr2_ = 1.0 / (ds * h * h);
+    dw_r_by_r2_.assign(size_r2_ + 2, 0.0);
+    dw_r_by_r2_[0] = dw_scale * limit / h;
+    for (int k = 1; k < size_r2_; ++k) {
+      const double q = std::sqrt(k * ds);
+      dw_r_by_r2_[k] = dw_scale * kernel.gradient_shape(q) / (q * h);
+    }
+  }
 }
 
 }  // namespace talus

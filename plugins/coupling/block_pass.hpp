@@ -81,7 +81,7 @@ std::uint64_t block_pass(const BlockPassInput& in, const Terms&... terms) {
         q.r2 = r2;
         q.r = std::sqrt(r2);
         q.w = in.kernel.w(q.r);
-        q.dw_r = q.r > 0.0 ? in.kernel.dw(q.r) / q.r : 0.0;
+        q.dw_r = in.kernel.dw_over_r_from_r2(r2);
         q.inv_r2e = 1.0 / (r2 + eta2);
         const Vec3 before = s.acc;
         (terms.pair(q, s), ...);

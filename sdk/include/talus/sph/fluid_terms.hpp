@@ -223,7 +223,7 @@ struct LaplacianViscosity {
   template <class S>
   TALUS_PAIR_INLINE void pair(const Pair& q, S& s) const {
     const std::size_t j = q.j;
-    const double f = s.mu * s.inv_rho * nb.mass[j] * nb.inv_density[j] * kernel->laplacian(q.r);
+    const double f = s.mu * s.inv_rho * nb.mass[j] * nb.inv_density[j] * kernel->laplacian(std::sqrt(q.r2));
     s.acc += (nb.velocity[j] - s.v) * f;
   }
 };

@@ -36,7 +36,7 @@ struct Pair {
   Index j = 0;       // neighbour index in set B
   Vec3 dx;           // x_i - x_j (minimum image on periodic axes)
   double r2 = 0.0;   // |dx|^2
-  double r = 0.0;    // |dx|
+  double r = 0.0;    // |dx|, filled when a term uses_value
   double w = 0.0;    // W(r), filled when a term uses_value
   double dw_r = 0.0; // (dW/dr)/r, filled when a term uses_gradient: grad_i W_ij = dx * dw_r
   double inv_r2e = 0.0;  // 1/(r^2 + eta^2), eta = 0.1 h (the usual regularisation), with the gradient
@@ -86,10 +86,12 @@ std::uint64_t pair_pass(std::size_t n, std::span<const Vec3> xa, const Grid& cel
       p.j = j;
       p.dx = dx;
       p.r2 = r2;
-      p.r = std::sqrt(r2);
-      if constexpr (need_value) p.w = kernel.w(p.r);
+      if constexpr (need_value) {
+        p.r = std::sqrt(r2);
+        p.w = kernel.w(p.r);
+      }
       if constexpr (need_gradient) {
-        p.dw_r = p.r > 0.0 ? kernel.dw(p.r) / p.r : 0.0;
+        p.dw_r = kernel.dw_over_r_from_r2(r2);
         p.inv_r2e = 1.0 / (r2 + eta2);
       }
       ++count;
