@@ -122,7 +122,7 @@ TEST_P(KernelTest, GradientOverRFromR2MatchesAnalytic) {
     err = std::max(err, std::abs(r * table.dw_over_r_from_r2(r * r) - exact));
   }
   EXPECT_LT(err / dw_max, 1e-5) << name;
-  if (name != "muller")  // the limit at r = 0, g'(0) / h^2 scaled
+  if (name != "muller")  // the limit at r = 0 (times h: dw_scale g(q)/q as q -> 0)
     EXPECT_NEAR(table.dw_over_r_from_r2(0.0) * h, dw_scale * k->gradient_shape(1e-9) / 1e-9, 1e-6 * dw_max) << name;
 }
 

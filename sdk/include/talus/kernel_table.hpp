@@ -46,7 +46,9 @@ class TALUS_API KernelTable {
   double w0() const { return w_[0]; }  // W(0), the self contribution
 
  private:
-  TALUS_PAIR_INLINE double lookup(const std::vector<double>& t, double r) const { return interpolate(t, r * inv_dr_, size_); }
+  TALUS_PAIR_INLINE double lookup(const std::vector<double>& t, double r) const {
+    return interpolate(t, r * inv_dr_, size_);
+  }
   // Linear interpolation at s table intervals from the start; 0 beyond the support.
   TALUS_PAIR_INLINE static double interpolate(const std::vector<double>& t, double s, int n) {
     const int k = static_cast<int>(s);
