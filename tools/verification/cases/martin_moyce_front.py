@@ -138,15 +138,15 @@ def front_history(run):
     return np.array(t), np.array(z)
 
 
-def deviation(T, Z, shift):
-    """Mean relative deviation from the measured points with the simulated time moved forward by `shift`."""
-    data = measured()
+def deviation(T, Z, shift, data):
+    """Mean relative deviation from the measured (T, Z) points `data` with the simulated time moved forward by
+    `shift`."""
     simulated = np.interp(data[:, 0] - shift, T, Z)
     return float(np.mean(np.abs(simulated - data[:, 1]) / data[:, 1]))
 
 
 def error(run):
-    return deviation(*front_history(run), RELEASE_OFFSET)
+    return deviation(*front_history(run), RELEASE_OFFSET, measured())
 
 
 def slope(T, Z, t0=1.5, t1=3.0):
@@ -162,8 +162,9 @@ def gates(run):
     speeds = [slope(*measured_series(name)) for name in MEASURED]
     speed = slope(T, Z)
     # Diagnostic: the deviation without the release correction, and the constant shift that would fit best.
+    data = measured()
     shifts = np.arange(0.0, 0.4001, 0.01)
-    left = [deviation(T, Z, s) for s in shifts]
+    left = [deviation(T, Z, s, data) for s in shifts]
     best = int(np.argmin(left))
     return [("never faster than Ritter's front 2 sqrt(gH)", bool(np.all(Z <= ritter + 1e-9)),
              f"max Z - Z_Ritter {np.max(Z - ritter):.3g}"),
