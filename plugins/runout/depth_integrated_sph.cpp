@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "esri_ascii.hpp"
+#include "follow_surface.hpp"
 #include "talus/error.hpp"
 #include "talus/world.hpp"
 
@@ -89,6 +90,7 @@ void DepthIntegratedSph::setup(World& world) {
   if (!variable_smoothing_) l_min_ = l_max_ = world.h;
 
   terrain_ = make_terrain(params_);
+  const ParamValues& terrain_values = params_.alternative_values("terrain");
   if (const Grid* dem = terrain_->grid()) {
     const double half = 0.5 * dem->cell;
     if (world.lo.x < dem->x0 - half || world.hi.x > dem->x_max() + half || world.lo.y < dem->y0 - half ||
@@ -140,6 +142,15 @@ void DepthIntegratedSph::setup(World& world) {
         drop[i] = 1;
         ++dropped;
         continue;
+      }
+      if (!terrain_->defined(pos[i].x, pos[i].y)) {
+        const std::string name = body[i] >= 0 && body[i] < static_cast<int>(world.bodies.size())
+                                     ? "body '" + world.bodies[body[i]].name + "'" : "a fluid body";
+        terrain_values.fail("file", "the release of " + name + " reaches " +
+                                        format("(%.6g, %.6g)", pos[i].x, pos[i].y) +
+                                        ", where the DEM has no surface (a no-data cell among the 4 x 4 cells its "
+                                        "bicubic surface and curvature need); fill the hole (e.g. gdal_fillnodata) or "
+                                        "move the release");
       }
       const Vec3 gz = terrain_->gradient(pos[i].x, pos[i].y);
       const double dp = body[i] >= 0 && body[i] < static_cast<int>(world.bodies.size()) && world.bodies[body[i]].dp > 0
@@ -243,7 +254,8 @@ void DepthIntegratedSph::compute_depth(World& world, int iterations) {
   auto vol = s.scalar("volume");
   auto ell = s.scalar("smoothing_length");
   auto depth = s.scalar("depth");
-  terrain_->sample(pos, z_.data(), grad_.data());
+  hess_.resize(n);
+  terrain_->sample(pos, z_.data(), grad_.data(), hess_.data());
   for (std::size_t i = 0; i < n; ++i) cos_[i] = 1.0 / std::sqrt(1.0 + norm2(grad_[i]));
   for (int it = 0; it < iterations; ++it) {
     bin_particles(pos, ell);
@@ -292,7 +304,7 @@ void DepthIntegratedSph::advance(World& world, double dt) {
   if (n == 0) return;
   if (speed_.size() != n) {
     z_.resize(n); cos_.resize(n); sigma_.resize(n); speed_.resize(n); density_.resize(n); gn_.resize(n);
-    tau_.resize(n); grad_.resize(n); accel_.resize(n); alpha_.resize(n);
+    tau_.resize(n); hold_.resize(n); grad_.resize(n); next_grad_.resize(n); trial_.resize(n); hess_.resize(n); accel_.resize(n); alpha_.resize(n);
   }
   auto pos = s.position();
   auto vel = s.vector("velocity");
@@ -303,7 +315,7 @@ void DepthIntegratedSph::advance(World& world, double dt) {
   const double g = g_;
 
   // 1. Terrain under each particle.
-  terrain_->sample(pos, z_.data(), grad_.data());
+  terrain_->sample(pos, z_.data(), grad_.data(), hess_.data());
 #pragma omp parallel for schedule(static) if (n > parallel_min)
   for (std::size_t i = 0; i < n; ++i) cos_[i] = 1.0 / std::sqrt(1.0 + norm2(grad_[i]));
 
@@ -354,15 +366,21 @@ void DepthIntegratedSph::advance(World& world, double dt) {
     const Vec3 gz = grad_[i];
     // (I + gz gz^T)^-1 a = a - gz (gz . a) / (1 + |gz|^2) = a - gz (gz . a) cos^2
     a -= (dot(gz, a) * ci2) * gz;
-    a -= (g * ci2) * gz;
+    const Vec3 gravity = -(g * ci2) * gz;
     a.z = 0.0;
-    accel_[i] = a;
-    amax = std::max(amax, norm(a));
+    accel_[i] = a + 0.5 * gravity;  // gravity's other half-kick comes at the end of the step
+    amax = std::max(amax, norm(a + gravity));
   }
   max_accel_ = amax;
 
-  // 4. Kick with the driving forces; speed along the surface.
-#pragma omp parallel for schedule(static) if (n > parallel_min)
+  // 4. Kick with the pressure force and half of gravity (gravity is split
+  //    kick-drift-kick around the drift, second order along curved terrain,
+  //    where a whole kick before the drift loses energy at O(dt) over each
+  //    swing); speed along the surface; the normal
+  //    load per unit mass with its centrifugal part, g_n = cos (g + v.H.v),
+  //    never below zero (a flow leaving a convex bend carries no friction).
+  std::size_t lifted = 0;
+#pragma omp parallel for schedule(static) reduction(+ : lifted) if (n > parallel_min)
   for (std::size_t i = 0; i < n; ++i) {
     Vec3 v = vel[i] + dt * accel_[i];
     v.z = 0.0;
@@ -370,9 +388,13 @@ void DepthIntegratedSph::advance(World& world, double dt) {
     const double vz = dot(grad_[i], v);
     speed_[i] = std::sqrt(norm2(v) + vz * vz);
     density_[i] = world.materials[mat[i]].density;
-    gn_[i] = g * cos_[i];
+    const double load = cos_[i] * (g + along(hess_[i], v));
+    lifted += load < 0.0;
+    gn_[i] = std::max(load, 0.0);
     tau_[i] = 0.0;
   }
+  lifted_steps_ += lifted;
+  lifted_now_ = lifted;
 
   // 5. Basal shear: one batch call per material.
   const BasalInputs in{depth.data(), speed_.data(), density_.data(), gn_.data()};
@@ -382,33 +404,82 @@ void DepthIntegratedSph::advance(World& world, double dt) {
   }
 
   // 6. Friction acts against the motion and at most stops it within the step
-  //    (implicit: a particle whose speed friction can absorb this step stops),
-  //    then drift.
+  //    (implicit: a particle whose speed friction can absorb this step stops).
   auto shear = s.scalar("basal_shear");
   auto out_speed = s.scalar("speed");
   const Vec3 lo = world.lo, hi = world.hi;
   const auto periodic = world.periodic;
-#pragma omp parallel for schedule(static) if (n > parallel_min)
-  for (std::size_t i = 0; i < n; ++i) {
-    const double decel = depth[i] > 0.0 ? tau_[i] / (density_[i] * depth[i]) * dt : 0.0;
-    const double sp = speed_[i];
-    double factor = 1.0;
-    if (decel > 0.0) factor = sp > decel ? 1.0 - decel / sp : 0.0;
-    vel[i] *= factor;
-    out_speed[i] = sp * factor;
-    shear[i] = tau_[i];
-    Vec3 x = pos[i] + dt * vel[i];
+  auto wrap = [&](Vec3 x) {
     for (int k = 0; k < 2; ++k)
       if (periodic[k]) {
         const double L = hi[k] - lo[k];
         if (x[k] < lo[k]) x[k] += L;
         else if (x[k] >= hi[k]) x[k] -= L;
       }
-    pos[i] = x;
+    return x;
+  };
+#pragma omp parallel for schedule(static) if (n > parallel_min)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double decel = depth[i] > 0.0 ? tau_[i] / (density_[i] * depth[i]) * dt : 0.0;
+    const double sp = speed_[i];
+    double factor = 1.0;
+    if (decel > 0.0) factor = sp > decel ? 1.0 - decel / sp : 0.0;
+    // A particle friction stops keeps its kicked velocity in vel (it does not
+    // drift): the end of the step weighs the friction against the whole kick.
+    hold_[i] = factor == 0.0 ? decel : 0.0;
+    if (factor > 0.0) vel[i] *= factor;
+    speed_[i] = sp * factor;
+    shear[i] = tau_[i];
+    trial_[i] = factor > 0.0 ? wrap(pos[i] + dt * vel[i]) : pos[i];
+  }
+
+  // 6a. Drift along the surface: the plan step dt v covers dt |u| of surface
+  //     only on a plane. Where the slope changes, the step is scaled so that
+  //     its length on the surface (with the mean of the gradients at its two
+  //     ends) is dt |u|; without this the path length, and so the potential
+  //     energy released, is off by O(dt^2) per step, always in one direction
+  //     over an oscillation (a slow energy drift). On a plane nothing changes.
+  terrain_->sample(trial_, z_.data(), next_grad_.data(), hess_.data());
+#pragma omp parallel for schedule(static) if (n > parallel_min)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (hold_[i] > 0.0) continue;  // stopped
+    const Vec3 d = dt * vel[i], mean = 0.5 * (grad_[i] + next_grad_[i]);
+    const double rise = dot(mean, d), path = std::sqrt(norm2(d) + rise * rise);
+    const double scale = path > 0.0 ? dt * speed_[i] / path : 1.0;
+    pos[i] = std::isfinite(scale) ? wrap(pos[i] + scale * d) : trial_[i];
+  }
+
+  terrain_->sample(pos, z_.data(), next_grad_.data(), hess_.data());
+  auto elev = s.scalar("elevation");
+  std::size_t off_terrain = 0;
+#pragma omp parallel for schedule(static) reduction(+ : off_terrain) if (n > parallel_min)
+  for (std::size_t i = 0; i < n; ++i) {
+    elev[i] = z_[i];
+    if (!std::isfinite(z_[i])) {
+      ++off_terrain;
+      continue;
+    }
+    const Vec3 g1 = next_grad_[i];
+    const double c2 = 1.0 / (1.0 + norm2(g1));
+    // Gravity's second half-kick, at the new point. A particle friction
+    // stopped (it has not moved) stays stopped while friction can absorb the
+    // step's whole kick; what friction cannot absorb sets it moving.
+    const Vec3 kick = -(0.5 * dt * g * c2) * g1;
+    Vec3 v = (hold_[i] > 0.0 ? vel[i] : follow_surface(vel[i], grad_[i], g1, speed_[i])) + kick;
+    const double rise = dot(g1, v);
+    double sp = std::sqrt(norm2(v) + rise * rise);
+    if (hold_[i] > 0.0) {
+      const double factor = sp > hold_[i] ? 1.0 - hold_[i] / sp : 0.0;
+      v *= factor;
+      sp *= factor;
+    }
+    vel[i] = v;
+    out_speed[i] = sp;
   }
 
   // 7. The smoothing length follows the new depth.
   update_smoothing(vol, ell);
+  if (off_terrain) remove_off_terrain(world);
 
   const bool last = world.end_time > 0.0 && world.time + dt >= world.end_time * (1.0 - 1e-12);
   if (last || (world.step + 1) % static_cast<std::uint64_t>(raster_every_) == 0) {
@@ -420,11 +491,31 @@ void DepthIntegratedSph::advance(World& world, double dt) {
   }
 }
 
+// Particles over undefined terrain (their elevation is NaN) leave the flow,
+// counted with those that leave the domain.
+void DepthIntegratedSph::remove_off_terrain(World& world) {
+  ParticleStore& s = world.fluid;
+  auto elev = s.scalar("elevation");
+  std::vector<std::uint8_t> drop(s.size(), 0);
+  for (std::size_t i = 0; i < s.size(); ++i) drop[i] = !std::isfinite(elev[i]);
+  const std::size_t gone = s.remove_if(drop);
+  world.removed += gone;
+  off_terrain_ += gone;
+  world.refresh_material_index();
+}
+
 std::vector<std::string> DepthIntegratedSph::finish(World& world, const std::string& output_directory) {
   std::vector<std::string> lines;
   char line[160];
   std::snprintf(line, sizeof line, "run-out distance %.4g m, deposit volume %.6g m^3", runout_, total_volume(world));
   lines.emplace_back(line);
+  if (lifted_steps_)
+    lines.push_back(std::to_string(lifted_steps_) + " particle-steps with no basal contact: the centrifugal term over "
+                    "convex terrain cancelled gravity's normal part, so those particles followed the surface "
+                    "without friction");
+  if (off_terrain_)
+    lines.push_back(std::to_string(off_terrain_) + " particles flowed onto undefined terrain (DEM no-data) and were "
+                    "removed");
   if (!raster_prefix_.empty())
     for (const auto& file : write_rasters(output_directory + "/" + raster_prefix_)) lines.push_back("raster: " + file);
   return lines;
@@ -433,11 +524,9 @@ std::vector<std::string> DepthIntegratedSph::finish(World& world, const std::str
 void DepthIntegratedSph::record(World& world) {
   ParticleStore& s = world.fluid;
   auto pos = s.position();
-  auto elev = s.scalar("elevation");
   auto depth = s.scalar("depth");
   double runout = runout_;
   for (std::size_t i = 0; i < s.size(); ++i) {
-    elev[i] = terrain_->elevation(pos[i].x, pos[i].y);
     if (depth[i] > threshold_) runout = std::max(runout, norm(pos[i] - crown_));
   }
   runout_ = runout;
@@ -479,9 +568,13 @@ std::string DepthIntegratedSph::status(const World& world) const {
     hmax = std::max(hmax, depth[i]);
     vmax = std::max(vmax, speed[i]);
   }
-  return format("run-out %.4g m, deposit volume %.6g m^3, moving %.3g%%, h max %.3g m", runout_,
-                total_volume(world), s.size() ? 100.0 * moving / s.size() : 0.0, hmax) +
-         format(", v max %.3g m/s", vmax);
+  std::string line = format("run-out %.4g m, deposit volume %.6g m^3, moving %.3g%%, h max %.3g m", runout_,
+                            total_volume(world), s.size() ? 100.0 * moving / s.size() : 0.0, hmax) +
+                     format(", v max %.3g m/s", vmax);
+  if (lifted_steps_)
+    line += ", " + std::to_string(lifted_now_) + " now with no basal contact over convex terrain (" +
+            std::to_string(lifted_steps_) + " particle-steps so far)";
+  return line;
 }
 
 }  // namespace talus::runout

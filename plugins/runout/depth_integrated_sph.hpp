@@ -1,7 +1,31 @@
 // Depth-integrated SPH run-out over terrain (seed pfe-ie §2.2, eqs 8-9 and
 // 19-28; Pastor et al. 2009). Particles live in plan view (x, y) over the
 // terrain Z(x, y) and carry a fixed volume V_i (their mass is rho V_i, so
-// mass is conserved exactly) and a depth-averaged velocity.
+// mass is conserved exactly) and the plan part v of their velocity along the
+// surface, u = (v, grad Z . v), speed |u|.
+//
+// Equations of motion. For a particle held on z = Z(x, y) by the normal
+// reaction N n (n the unit normal), the plan coordinates have the metric
+// M = I + grad Z grad Z^T (kinetic energy 1/2 v^T M v), and Lagrange's
+// equations give
+//   dv/dt = M^-1 a_p - cos^2(theta) grad Z (g + v.H.v),   H = Hessian of Z,
+//   N / m  = cos(theta) (g + v.H.v)                       (the normal load g_n),
+// with cos^2(theta) = 1 / (1 + |grad Z|^2) and a_p the pressure force in plan.
+// The v.H.v terms are the centripetal part: without them a flow that turns
+// from a slope onto a floor loses the kinetic energy of its normal component
+// (cos^2 of the angle turned). They enter as follows:
+//   - in the motion, through follow_surface(): after each drift the surface
+//     velocity is projected onto the tangent plane at the new point and keeps
+//     its magnitude (to first order in dt exactly the term above; at a sharp
+//     break the redirection the break imposes, with no loss);
+//   - in the basal law, through g_n = cos (g + v.H.v) with H from the terrain
+//     (analytic, or the DEM's smoothed bicubic surface; terrain.hpp), for every
+//     rheology, built-in or third-party, that uses the normal load. Over convex
+//     terrain fast enough that g_n < 0 the flow would take off: g_n is clamped
+//     at 0 (no friction), the flow keeps following the surface, and the
+//     particle-steps are counted in the status line and the summary.
+//   The depth-averaged pressure keeps g cos(theta) (the curvature correction
+//   to the earth pressure is O(h / R), left out as in the seed).
 //
 //   depth     sigma_i = sum_j V_j W(x_i - x_j, l_i)            (eq. 25-26, vertical)
 //             h_i = sigma_i cos(theta_i)                       (slope-normal depth)
@@ -9,21 +33,25 @@
 //             p / sigma^2 = 1/2 g c^2 the symmetric SPH gradient is
 //             a_p = -sum_j V_j 1/4 g (c_i^2 + c_j^2) (gradW_ij(l_i) / alpha_i +
 //             gradW_ij(l_j) / alpha_j) (alpha: grad-h factor), mapped from the
-//             plan to the surface with the inverse metric (I + gZ gZ^T)^-1;
+//             plan to the surface with M^-1;
 //   gravity   the plan components of g projected on the tangent plane,
 //             -g cos^2(theta) grad Z;
 //   friction  tau_b from the material's Rheology::basal_shear (one batch
-//             call per material), applied implicitly after the driving
-//             forces: it only slows a particle and stops it within the step.
+//             call per material, normal load g_n above), applied implicitly
+//             after the first kick: it only slows a particle and stops it
+//             within the step, and holds it while it can absorb the step's kick.
 //   smoothing l_i = (h_over_dp) sqrt(V_i / sigma_i) (flow spreading in plan) or
 //             l_0 sigma_0 / sigma_i (spreading along one direction), within bounds.
-//   time      symplectic Euler (kick then drift), dt = cfl l / (sqrt(g h) + |v|).
+//   time      pressure kick, gravity kick-drift-kick (second order along curved
+//             terrain), the drift scaled to cover dt |u| of surface,
+//             dt = cfl l / (sqrt(g h) + |v|).
 //   neighbours LevelGrid: particles binned by smoothing length, so the few
 //             large-l particles of a thin front do not set every cell's size.
 // On an inclined plane this reduces exactly to the Savage-Hutter equations
 // in slope coordinates that Mangeney et al. (2000) solve.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -58,12 +86,16 @@ class DepthIntegratedSph final : public Stage {
   double runout_distance() const { return runout_; }
   double total_volume(const World& world) const;
   double gravity() const { return g_; }
+  // Particle-steps in which the centrifugal term over convex terrain cancelled
+  // the normal load (the flow would lift off; it follows the surface without friction).
+  std::uint64_t lifted_particle_steps() const { return lifted_steps_; }
 
  private:
   void compute_depth(World& world, int iterations);
   void update_smoothing(std::span<const double> volume, std::span<double> smoothing) const;
   void bin_particles(std::span<const Vec3> pos, std::span<const double> smoothing);
   void record(World& world);
+  void remove_off_terrain(World& world);
 
   ParamValues params_;
   std::unique_ptr<Terrain> terrain_;
@@ -72,6 +104,8 @@ class DepthIntegratedSph final : public Stage {
   RunoutRasters rasters_;
   double g_ = 9.81, cfl_ = 0.2, kappa_ = 1.3, l_min_ = 0.0, l_max_ = 0.0, threshold_ = 0.01;
   double max_accel_ = 0.0, runout_ = 0.0;
+  std::uint64_t lifted_steps_ = 0, lifted_now_ = 0;  // particle-steps with no basal contact (convex take-off)
+  std::uint64_t off_terrain_ = 0;                     // particles removed over undefined terrain
   double dp_ = 1.0;
   bool variable_smoothing_ = true, depth_law_ = false;
   std::int64_t raster_every_ = 1;
@@ -81,9 +115,10 @@ class DepthIntegratedSph final : public Stage {
   std::vector<std::string> notes_;
 
   // Scratch, re-filled every step (sized when the particle count changes).
-  std::vector<double> reach_, z_, cos_, sigma_, alpha_, speed_, density_, gn_, tau_;
+  std::vector<double> reach_, z_, cos_, sigma_, alpha_, speed_, density_, gn_, tau_, hold_;
   double alpha_floor_ = 0.2;  // bounds the grad-h factor of nearly isolated particles
-  std::vector<Vec3> grad_, accel_;
+  std::vector<Vec3> grad_, next_grad_, accel_, trial_;
+  std::vector<Hessian> hess_;
 };
 
 }  // namespace talus::runout

@@ -23,7 +23,7 @@ struct QuietGdal {
   ~QuietGdal() { CPLPopErrorHandler(); }
 };
 
-Grid read_geotiff(const std::string& path) {
+Grid read_geotiff(const std::string& path, bool allow_nodata) {
   GDALAllRegister();
   const QuietGdal quiet;
   CPLErrorReset();
@@ -58,7 +58,12 @@ Grid read_geotiff(const std::string& path) {
       throw InputError("error: " + path + ": cannot read row " + std::to_string(r + 1));
     const int south_row = north_up ? g.nrows - 1 - r : r;
     for (int c = 0; c < g.ncols; ++c) {
-      if ((has_nodata && row[c] == nodata) || !std::isfinite(row[c]))
+      const bool hole = (has_nodata && row[c] == nodata) || !std::isfinite(row[c]);
+      if (hole && allow_nodata) {
+        g.at(c, south_row) = g.nodata;
+        continue;
+      }
+      if (hole)
         throw InputError("error: " + path + ": no-data value at row " + std::to_string(r + 1) + ", column " +
                          std::to_string(c + 1) + ": the terrain has a hole; fill it before use");
       g.at(c, south_row) = row[c];
@@ -73,7 +78,7 @@ Grid read_geotiff(const std::string& path) {
 
 bool geotiff_supported() { return false; }
 
-Grid read_geotiff(const std::string& path) {
+Grid read_geotiff(const std::string& path, bool) {
   throw InputError("error: " + path +
                    ": GeoTIFF DEMs need GDAL, and this build has none (configured with TALUS_WITH_GDAL=OFF; install "
                    "libgdal-dev and reconfigure with it ON), or "

@@ -15,7 +15,8 @@ void RunoutRasters::configure(const Grid& layout, const Terrain& terrain, double
   for (int r = 0; r < cos_.nrows; ++r)
     for (int c = 0; c < cos_.ncols; ++c) {
       const Vec3 g = terrain.gradient(cos_.x_of(c), cos_.y_of(r));
-      cos_.at(c, r) = 1.0 / std::sqrt(1.0 + g.x * g.x + g.y * g.y);
+      const double cosine = 1.0 / std::sqrt(1.0 + g.x * g.x + g.y * g.y);
+      cos_.at(c, r) = std::isfinite(cosine) ? cosine : 1.0;  // undefined terrain: no flow reaches it
     }
   h_ = hv_ = peak_h_ = peak_v_ = cos_;
   std::fill(h_.value.begin(), h_.value.end(), 0.0);
@@ -70,6 +71,12 @@ std::vector<std::string> RunoutRasters::write(const std::string& prefix, const T
   put("peak_velocity", peak_v_);
   put("deposit_thickness", h_);
   put("arrival_time", arrival_);
+  // A DEM is written as read (the flow's smoothed surface departs from it by
+  // millimetres where it is curved); analytic terrain is sampled.
+  if (const Grid* dem = terrain.grid()) {
+    put("elevation", *dem);
+    return files;
+  }
   Grid z = cos_;
   for (int r = 0; r < z.nrows; ++r)
     for (int c = 0; c < z.ncols; ++c) z.at(c, r) = terrain.elevation(z.x_of(c), z.y_of(r));

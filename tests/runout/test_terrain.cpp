@@ -125,9 +125,70 @@ TEST(GridTerrain, BilinearElevationAndGradientAreExactOnAPlane) {
   const std::vector<Vec3> pos = {{12.0, 22.0, 0.0}, {16.5, 24.5, 0.0}};
   double z[2];
   Vec3 g[2];
-  t->sample(pos, z, g);
+  Hessian h[2];
+  t->sample(pos, z, g, h);
   EXPECT_NEAR(z[1], 100 + 0.5 * 16.5 - 0.25 * 24.5, 1e-6);
   EXPECT_NEAR(g[0].x, 0.5, 1e-6);
+}
+
+// The DEM surface is the cubic B-spline of the DEM values: a quadratic
+// surface comes back with its curvature exact and its elevation offset by
+// cell^2 (Zxx + Zyy) / 6.
+TEST(GridTerrain, SmoothedBicubicHasTheCurvatureOfAQuadraticSurface) {
+  const double cell = 2.0;
+  auto quadratic = [](double x, double y) { return 0.01 * x * x - 0.004 * x * y + 0.02 * y * y + 0.3 * x; };
+  std::string text = "ncols 20\nnrows 16\nxllcorner 0\nyllcorner 0\ncellsize 2\n";
+  for (int r = 15; r >= 0; --r)
+    for (int c = 0; c < 20; ++c)
+      text += std::to_string(quadratic((c + 0.5) * cell, (r + 0.5) * cell)) + (c < 19 ? " " : "\n");
+  auto t = make_grid_terrain(read_esri_ascii(write_file("quadratic.asc", text), true), "quadratic.asc");
+  for (double x : {9.0, 17.3, 24.9})
+    for (double y : {8.0, 13.7, 22.1}) {
+      const Hessian h = t->hessian(x, y);
+      EXPECT_NEAR(h.xx, 0.02, 1e-6);
+      EXPECT_NEAR(h.xy, -0.004, 1e-6);
+      EXPECT_NEAR(h.yy, 0.04, 1e-6);
+      EXPECT_NEAR(t->elevation(x, y), quadratic(x, y) + cell * cell * (0.02 + 0.04) / 6.0, 1e-4);
+      EXPECT_NEAR(t->gradient(x, y).x, 0.02 * x - 0.004 * y + 0.3, 1e-6);
+    }
+}
+
+// A no-data cell leaves the surface undefined where the 4 x 4 control points
+// include it; elsewhere the surface is there.
+TEST(GridTerrain, NoDataCellLeavesTheSurfaceUndefinedAroundIt) {
+  auto t = make_grid_terrain(read_esri_ascii(write_file("hole_dem.asc", plane_asc("-9999")), true), "hole_dem.asc");
+  // The hole is the cell centred at (15, 23).
+  EXPECT_FALSE(t->defined(15.0, 23.0));
+  EXPECT_FALSE(std::isfinite(t->elevation(14.0, 22.5)));
+  double z[1];
+  Vec3 g[1];
+  Hessian h[1];
+  const std::vector<Vec3> pos = {{15.5, 23.0, 0.0}};
+  t->sample(pos, z, g, h);
+  EXPECT_FALSE(std::isfinite(z[0]));
+  // Well away from it (beyond two cells), defined and still the plane.
+  auto full = make_grid_terrain(read_esri_ascii(write_file("no_hole_dem.asc", plane_asc()), true), "no_hole_dem.asc");
+  EXPECT_TRUE(full->defined(15.0, 23.0));
+}
+
+TEST(StageSetup, ReleaseOutsideTheDemIsAnError) {
+  const std::string dem = write_file("small_dem.asc", plane_asc());
+  test::RunoutWorld w({0, 0, 0}, {100, 100, 0}, 1.0);
+  const int m = w.add_material("debris", 2000.0, nullptr);
+  w.fill_box({50.0, 50.0, 0}, {60.0, 60.0, 0}, m);
+  expect_input_error(
+      [&] { w.make_stage(R"({"terrain": {"dem": {"file": ")" + dem + R"("}}, "release_thickness": 1})", 1.0); },
+      {"reaches beyond the DEM", "shrink the domain"});
+}
+
+TEST(StageSetup, ReleaseWhereTheDemHasNoSurfaceIsAnErrorNamingTheFileAndPointer) {
+  const std::string dem = write_file("release_hole.asc", plane_asc("-9999"));
+  test::RunoutWorld w({10.5, 20.5, 0}, {17.5, 25.5, 0}, 0.5);
+  const int m = w.add_material("debris", 2000.0, nullptr);
+  w.fill_box({14.0, 22.0, 0}, {16.0, 24.0, 0}, m);
+  expect_input_error(
+      [&] { w.make_stage(R"({"terrain": {"dem": {"file": ")" + dem + R"("}}, "release_thickness": 1})", 1.0); },
+      {"/terrain/dem/file", "no surface", "no-data", "mass0"});
 }
 
 std::unique_ptr<Terrain> analytic(const std::string& json) {
