@@ -5,6 +5,7 @@
 
 #include "plugin_registry.hpp"
 #include "scene_schema.hpp"
+#include "talus/error.hpp"
 #include "text.hpp"
 
 namespace talus {
@@ -173,6 +174,11 @@ json example_value(const ParamSpec& s, int dim) {
       return v;
     }
     case ParamType::object: return example_json(*s.nested, {}, {}, dim);
+    case ParamType::one_of: {
+      if (s.alternatives.empty()) return json::object();
+      const auto& [name, set] = s.alternatives.front();
+      return json{{name, example_json(*set, {}, {}, dim)}};
+    }
     default: return json::array();
   }
 }
@@ -189,9 +195,10 @@ json scene_json_schema(PluginRegistry& registry) {
   return j;
 }
 
-std::string doc_text(const ParamSet& set, const std::string& kind) {
-  std::ostringstream out;
-  out << set.name() << (kind.empty() ? "" : " (" + kind + ")") << ": " << set.summary() << "\n\n";
+namespace {
+
+// The parameter table of one set, each line indented by `indent`.
+void doc_table(std::ostringstream& out, const ParamSet& set, const std::string& indent) {
   std::size_t w_name = 9, w_type = 4, w_unit = 4, w_def = 7;
   for (const auto& s : set.specs()) {
     w_name = std::max(w_name, s.name.size());
@@ -201,13 +208,35 @@ std::string doc_text(const ParamSet& set, const std::string& kind) {
   }
   auto row = [&](const std::string& a, const std::string& b, const std::string& c, const std::string& d,
                  const std::string& e, const std::string& f) {
-    out << "  " << a << std::string(w_name - a.size() + 2, ' ') << b << std::string(w_type - b.size() + 2, ' ') << c
+    out << indent << a << std::string(w_name - a.size() + 2, ' ') << b << std::string(w_type - b.size() + 2, ' ') << c
         << std::string(w_unit - c.size() + 2, ' ') << d << std::string(w_def - d.size() + 2, ' ') << e
         << (f.empty() ? "" : "  [" + f + "]") << "\n";
   };
   row("parameter", "type", "unit", "default", "description", "");
   for (const auto& s : set.specs()) row(s.name, type_text(s), s.unit.empty() ? "-" : s.unit, default_text(s), s.doc, s.range_text());
-  if (set.specs().empty()) out << "  (no parameters)\n";
+  if (set.specs().empty()) out << indent << "(no parameters)\n";
+}
+
+// Each alternative of the set's one-of keys, with its own table.
+void doc_alternatives(std::ostringstream& out, const ParamSet& set, const std::string& path) {
+  for (const auto& s : set.specs()) {
+    if (s.type != ParamType::one_of) continue;
+    out << "\n  " << path << s.name << ": give exactly one of\n";
+    for (const auto& [name, alt] : s.alternatives) {
+      out << "\n    \"" << name << "\": " << alt->summary() << "\n";
+      doc_table(out, *alt, "      ");
+      doc_alternatives(out, *alt, path + s.name + "/" + name + "/");
+    }
+  }
+}
+
+}  // namespace
+
+std::string doc_text(const ParamSet& set, const std::string& kind) {
+  std::ostringstream out;
+  out << set.name() << (kind.empty() ? "" : " (" + kind + ")") << ": " << set.summary() << "\n\n";
+  doc_table(out, set, "  ");
+  doc_alternatives(out, set, "");
   return out.str();
 }
 
@@ -216,13 +245,43 @@ json example_json(const ParamSet& set, const std::string& model_key, const std::
   if (!model_key.empty()) j[model_key] = model_name;
   for (const auto& s : set.specs())
     if (s.required || s.type != ParamType::object) {
-      if (s.type == ParamType::one_of || s.type == ParamType::model || s.type == ParamType::model_list) continue;
+      if (s.type == ParamType::model || s.type == ParamType::model_list) continue;
+      if (s.type == ParamType::one_of && !s.required) continue;
       if (!s.required && !s.default_real && !s.default_integer && !s.default_boolean && !s.default_string &&
           !s.default_reals)
         continue;
       j[s.name] = example_value(s, dim);
     }
   return j;
+}
+
+Example runnable_example(const ParamSet& set, const std::string& model_key, const std::string& model_name, int dim) {
+  Example e{example_json(set, model_key, model_name, dim), {}};
+  for (const auto& s : set.specs())
+    if (s.required && !s.default_real && !s.default_integer && !s.default_boolean && !s.default_string &&
+        !s.default_reals)
+      e.placeholders.push_back(s.type == ParamType::one_of ? s.name + " (the first of its alternatives)" : s.name);
+  // Optional keys the model's own checks ask for (one of two ways to give a
+  // value, say) are filled in too, so the fragment validates.
+  for (std::size_t round = 0; round <= set.specs().size(); ++round) {
+    json body = e.json;
+    if (!model_key.empty()) body.erase(model_key);
+    try {
+      params_from_json(set, body.dump(), dim);
+      break;
+    } catch (const InputError& error) {
+      const std::string message = error.what();
+      bool added = false;
+      for (const auto& s : set.specs())
+        if (!e.json.contains(s.name) && message.find("/" + s.name + ":") != std::string::npos) {
+          e.json[s.name] = example_value(s, dim);
+          e.placeholders.push_back(s.name);
+          added = true;
+        }
+      if (!added) break;
+    }
+  }
+  return e;
 }
 
 }  // namespace talus

@@ -6,6 +6,7 @@
 #include "talus/config.hpp"
 
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -25,5 +26,15 @@ TALUS_API nlohmann::json scene_json_schema(PluginRegistry& registry);
 TALUS_API std::string doc_text(const ParamSet& set, const std::string& kind);
 // A JSON example built from defaults and ranges, for `talus example`.
 TALUS_API nlohmann::json example_json(const ParamSet& set, const std::string& model_key, const std::string& model_name, int dim);
+
+// A fragment for `talus example`: example_json plus the optional keys the
+// model's checks require, and the names whose values are placeholders (no
+// default to take them from).
+struct Example {
+  nlohmann::json json;
+  std::vector<std::string> placeholders;
+};
+TALUS_API Example runnable_example(const ParamSet& set, const std::string& model_key, const std::string& model_name,
+                                   int dim);
 
 }  // namespace talus

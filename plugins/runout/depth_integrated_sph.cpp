@@ -44,6 +44,10 @@ ParamSet DepthIntegratedSph::describe() {
       .doc("lower bound of the smoothing length, as a multiple of the scene's h");
   p.real("max_smoothing_ratio").greater_than(0.0).default_value(3.0)
       .doc("upper bound of the smoothing length (thin fronts), as a multiple of the scene's h");
+  p.real("artificial_viscosity").min(0.0).default_value(0.1)
+      .doc("Monaghan alpha of an artificial viscosity between approaching particles (wave speed sqrt(g h)): damps the "
+           "particle noise that otherwise grows over long runs at fine resolution; a flow moving as a whole or "
+           "spreading does not feel it; 0 for a strictly conservative run");
   p.real("depth_threshold").unit("m").min(0.0).default_value(0.01)
       .doc("thickness above which a raster cell counts as reached (arrival time, peak velocity)");
   p.string("rasters").optional()
@@ -69,7 +73,8 @@ DepthIntegratedSph::DepthIntegratedSph(const ParamValues& v)
       threshold_(v.real("depth_threshold")),
       variable_smoothing_(v.boolean("variable_smoothing")),
       depth_law_(v.string("smoothing_law") == "depth"),
-      raster_every_(v.integer("raster_every")) {
+      raster_every_(v.integer("raster_every")),
+      viscosity_(v.real("artificial_viscosity")) {
   if (v.has("rasters")) raster_prefix_ = v.string("rasters");
 }
 
@@ -277,6 +282,44 @@ void DepthIntegratedSph::compute_depth(World& world, int iterations) {
   std::copy(z_.begin(), z_.end(), elev.begin());
 }
 
+// sigma, the slope-normal depth and the grad-h factor at the current
+// positions and smoothing lengths (the particles binned for them).
+//    With l = l(sigma), the variational ("grad-h") factor
+//    alpha_i = 1 - (d sigma_i / d l_i)(d l_i / d sigma_i) enters the pressure
+//    force (Rodriguez-Paz & Bonet 2005, Comput. Struct. 83): for the area law
+//    alpha_i = -1 / (2 sigma_i) sum_j V_j r_ij dW/dr(r_ij, l_i); 1 where l is
+//    at a bound (or fixed). It keeps thin fronts moving at the right speed.
+void DepthIntegratedSph::sum_depth(World& world) {
+  ParticleStore& s = world.fluid;
+  const std::size_t n = s.size();
+  auto pos = s.position();
+  auto vol = s.scalar("volume");
+  auto ell = s.scalar("smoothing_length");
+  auto depth = s.scalar("depth");
+  const VariableKernel kern = kernel_;
+  const double sup = kern.support;
+  const double lo_l = l_min_, hi_l = l_max_;
+  const bool area_law = variable_smoothing_ && !depth_law_, depth_law = variable_smoothing_ && depth_law_;
+#pragma omp parallel for schedule(static) if (n > parallel_min)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double li = ell[i];
+    double sum = 0.0, moment = 0.0;
+    grid_.for_each_neighbour(pos[i], pos, sup * li, false, [&](Index j, const Vec3&, double r2) {
+      const double r = std::sqrt(r2);
+      sum += vol[j] * kern.w(r, li);
+      moment += vol[j] * r2 * kern.dw_over_r(r, li);
+    });
+    sigma_[i] = sum;
+    depth[i] = cos_[i] * sum;
+    double alpha = 1.0;
+    if (li > lo_l * (1.0 + 1e-12) && li < hi_l * (1.0 - 1e-12)) {
+      if (area_law) alpha = -0.5 * moment / sum;
+      else if (depth_law) alpha = -1.0 - moment / sum;
+    }
+    alpha_[i] = 1.0 / std::max(alpha, alpha_floor_);
+  }
+}
+
 double DepthIntegratedSph::stable_time_step(const World& world) {
   const ParticleStore& s = world.fluid;
   if (s.size() == 0) return inf;
@@ -304,7 +347,7 @@ void DepthIntegratedSph::advance(World& world, double dt) {
   if (n == 0) return;
   if (speed_.size() != n) {
     z_.resize(n); cos_.resize(n); sigma_.resize(n); speed_.resize(n); density_.resize(n); gn_.resize(n);
-    tau_.resize(n); hold_.resize(n); grad_.resize(n); next_grad_.resize(n); trial_.resize(n); hess_.resize(n); accel_.resize(n); alpha_.resize(n);
+    tau_.resize(n); hold_.resize(n); whole_speed_.resize(n); grad_.resize(n); next_grad_.resize(n); trial_.resize(n); hess_.resize(n); accel_.resize(n); alpha_.resize(n);
   }
   auto pos = s.position();
   auto vel = s.vector("velocity");
@@ -319,39 +362,26 @@ void DepthIntegratedSph::advance(World& world, double dt) {
 #pragma omp parallel for schedule(static) if (n > parallel_min)
   for (std::size_t i = 0; i < n; ++i) cos_[i] = 1.0 / std::sqrt(1.0 + norm2(grad_[i]));
 
-  // 2. Depth: sigma_i = sum_j V_j W(r_ij, l_i) (gather).
+  // 2. Depth: sigma_i = sum_j V_j W(r_ij, l_i) (gather). The smoothing
+  //    length then follows this depth, and the depth is summed again with it,
+  //    so the pressure force sees a smoothing length consistent with the
+  //    positions: one a step behind (updated after the drift) feeds a slowly
+  //    growing transverse instability at fine resolution (a lens swinging in a
+  //    parabolic canal lost its symmetry after one swing at a/89).
   bin_particles(pos, ell);
+  sum_depth(world);
+  if (variable_smoothing_) {
+    update_smoothing(vol, ell);
+    bin_particles(pos, ell);
+    sum_depth(world);
+  }
   const VariableKernel kern = kernel_;
   const double sup = kern.support;
-  //    With l = l(sigma), the variational ("grad-h") factor
-  //    alpha_i = 1 - (d sigma_i / d l_i)(d l_i / d sigma_i) enters the pressure
-  //    force (Rodriguez-Paz & Bonet 2005, Comput. Struct. 83): for the area law
-  //    alpha_i = -1 / (2 sigma_i) sum_j V_j r_ij dW/dr(r_ij, l_i); 1 where l is
-  //    at a bound (or fixed). It keeps thin fronts moving at the right speed.
-  const double lo_l = l_min_, hi_l = l_max_;
-  const bool area_law = variable_smoothing_ && !depth_law_, depth_law = variable_smoothing_ && depth_law_;
-#pragma omp parallel for schedule(static) if (n > parallel_min)
-  for (std::size_t i = 0; i < n; ++i) {
-    const double li = ell[i];
-    double sum = 0.0, moment = 0.0;
-    grid_.for_each_neighbour(pos[i], pos, sup * li, false, [&](Index j, const Vec3&, double r2) {
-      const double r = std::sqrt(r2);
-      sum += vol[j] * kern.w(r, li);
-      moment += vol[j] * r2 * kern.dw_over_r(r, li);
-    });
-    sigma_[i] = sum;
-    depth[i] = cos_[i] * sum;
-    double alpha = 1.0;
-    if (li > lo_l * (1.0 + 1e-12) && li < hi_l * (1.0 - 1e-12)) {
-      if (area_law) alpha = -0.5 * moment / sum;
-      else if (depth_law) alpha = -1.0 - moment / sum;
-    }
-    alpha_[i] = 1.0 / std::max(alpha, alpha_floor_);
-  }
 
   // 3. Pressure gradient (symmetric in i, j: momentum-conserving on a plane)
   //    mapped to the surface, plus gravity along the slope.
   double amax = 0.0;
+  const double viscosity = viscosity_;
 #pragma omp parallel for schedule(static) reduction(max : amax) if (n > parallel_min)
   for (std::size_t i = 0; i < n; ++i) {
     const double li = ell[i], ci2 = cos_[i] * cos_[i];
@@ -360,10 +390,23 @@ void DepthIntegratedSph::advance(World& world, double dt) {
       const double r = std::sqrt(r2);
       const double lj = ell[j];
       if (r >= sup * std::max(li, lj)) return;
-      const double f = 0.5 * (kern.dw_over_r(r, li) * alpha_[i] + kern.dw_over_r(r, lj) * alpha_[j]);
-      a -= (vol[j] * 0.5 * g * (ci2 + cos_[j] * cos_[j]) * f) * dx;
+      const double wi = kern.dw_over_r(r, li), wj = kern.dw_over_r(r, lj);
+      double f = 0.5 * g * (ci2 + cos_[j] * cos_[j]) * 0.5 * (wi * alpha_[i] + wj * alpha_[j]);
+      const double approach = dot(vel[i] - vel[j], dx);
+      if (viscosity > 0.0 && approach < 0.0) {
+        const double lm = 0.5 * (li + lj);
+        const double mu = lm * approach / (r2 + 0.01 * lm * lm);
+        const double c = 0.5 * (std::sqrt(g * std::max(depth[i], 0.0)) + std::sqrt(g * std::max(depth[j], 0.0)));
+        f -= viscosity * c * mu / (0.5 * (sigma_[i] + sigma_[j])) * 0.5 * (wi + wj);
+      }
+      a -= (vol[j] * f) * dx;
     });
     const Vec3 gz = grad_[i];
+    // The earth pressure's own change with the slope: the hydrostatic energy
+    // 1/2 g cos^2(theta_i) sigma_i per unit volume depends on x_i through
+    // cos^2 = 1 / (1 + |grad Z|^2) too, -1/2 g sigma grad(cos^2) = g sigma cos^4 H grad Z.
+    const Hessian& H = hess_[i];
+    a += (g * sigma_[i] * ci2 * ci2) * Vec3{H.xx * gz.x + H.xy * gz.y, H.xy * gz.x + H.yy * gz.y, 0.0};
     // (I + gz gz^T)^-1 a = a - gz (gz . a) / (1 + |gz|^2) = a - gz (gz . a) cos^2
     a -= (dot(gz, a) * ci2) * gz;
     const Vec3 gravity = -(g * ci2) * gz;
@@ -387,6 +430,11 @@ void DepthIntegratedSph::advance(World& world, double dt) {
     vel[i] = v;
     const double vz = dot(grad_[i], v);
     speed_[i] = std::sqrt(norm2(v) + vz * vz);
+    // The speed the step's whole kick would give (gravity's second half at
+    // this point): friction that can absorb it holds the particle.
+    const Vec3 whole = v - (0.5 * dt * g * cos_[i] * cos_[i]) * grad_[i];
+    const double whole_z = dot(grad_[i], whole);
+    whole_speed_[i] = std::sqrt(norm2(whole) + whole_z * whole_z);
     density_[i] = world.materials[mat[i]].density;
     const double load = cos_[i] * (g + along(hess_[i], v));
     lifted += load < 0.0;
@@ -424,10 +472,17 @@ void DepthIntegratedSph::advance(World& world, double dt) {
     const double sp = speed_[i];
     double factor = 1.0;
     if (decel > 0.0) factor = sp > decel ? 1.0 - decel / sp : 0.0;
-    // A particle friction stops keeps its kicked velocity in vel (it does not
-    // drift): the end of the step weighs the friction against the whole kick.
-    hold_[i] = factor == 0.0 ? decel : 0.0;
-    if (factor > 0.0) vel[i] *= factor;
+    // Held: friction absorbs the whole kick; the particle rests this step.
+    // Stopped: it absorbs the first part; it does not drift, and the end of
+    // the step weighs friction against the whole kick (its velocity stays in vel).
+    if (decel > 0.0 && whole_speed_[i] <= decel) {
+      factor = 0.0;
+      vel[i] = Vec3{};
+      hold_[i] = inf;
+    } else {
+      hold_[i] = factor == 0.0 ? decel : 0.0;
+      if (factor > 0.0) vel[i] *= factor;
+    }
     speed_[i] = sp * factor;
     shear[i] = tau_[i];
     trial_[i] = factor > 0.0 ? wrap(pos[i] + dt * vel[i]) : pos[i];
@@ -468,7 +523,10 @@ void DepthIntegratedSph::advance(World& world, double dt) {
     Vec3 v = (hold_[i] > 0.0 ? vel[i] : follow_surface(vel[i], grad_[i], g1, speed_[i])) + kick;
     const double rise = dot(g1, v);
     double sp = std::sqrt(norm2(v) + rise * rise);
-    if (hold_[i] > 0.0) {
+    if (hold_[i] == inf) {
+      v = Vec3{};
+      sp = 0.0;
+    } else if (hold_[i] > 0.0) {
       const double factor = sp > hold_[i] ? 1.0 - hold_[i] / sp : 0.0;
       v *= factor;
       sp *= factor;
@@ -477,8 +535,6 @@ void DepthIntegratedSph::advance(World& world, double dt) {
     out_speed[i] = sp;
   }
 
-  // 7. The smoothing length follows the new depth.
-  update_smoothing(vol, ell);
   if (off_terrain) remove_off_terrain(world);
 
   const bool last = world.end_time > 0.0 && world.time + dt >= world.end_time * (1.0 - 1e-12);

@@ -92,6 +92,7 @@ class DepthIntegratedSph final : public Stage {
 
  private:
   void compute_depth(World& world, int iterations);
+  void sum_depth(World& world);
   void update_smoothing(std::span<const double> volume, std::span<double> smoothing) const;
   void bin_particles(std::span<const Vec3> pos, std::span<const double> smoothing);
   void record(World& world);
@@ -109,13 +110,14 @@ class DepthIntegratedSph final : public Stage {
   double dp_ = 1.0;
   bool variable_smoothing_ = true, depth_law_ = false;
   std::int64_t raster_every_ = 1;
+  double viscosity_ = 0.0;  // Monaghan alpha
   std::string raster_prefix_;
   Vec3 crown_{};
   std::vector<int> materials_;  // materials with particles, checked at setup
   std::vector<std::string> notes_;
 
   // Scratch, re-filled every step (sized when the particle count changes).
-  std::vector<double> reach_, z_, cos_, sigma_, alpha_, speed_, density_, gn_, tau_, hold_;
+  std::vector<double> reach_, z_, cos_, sigma_, alpha_, speed_, density_, gn_, tau_, hold_, whole_speed_;
   double alpha_floor_ = 0.2;  // bounds the grad-h factor of nearly isolated particles
   std::vector<Vec3> grad_, next_grad_, accel_, trial_;
   std::vector<Hessian> hess_;

@@ -274,7 +274,8 @@ void declare_terrain(ParamSet& set) {
   channel.real("half_width").unit("m").greater_than(0.0).doc("half width at which the banks reach bank_height");
   channel.real("bank_height").unit("m").min(0.0).doc("bank height above the axis at y = axis +- half_width");
 
-  ParamSet dem{"dem", "digital elevation model: ESRI ASCII grid (.asc), or GeoTIFF (.tif) when built with GDAL"};
+  ParamSet dem{"dem", "digital elevation model: ESRI ASCII grid (.asc), or GeoTIFF (.tif) when built with GDAL; no-data "
+                      "cells allowed (the surface is undefined within two cells of one); see docs/runout.md"};
   dem.path("file").doc("DEM file, relative to the scene file");
 
   set.one_of("terrain")

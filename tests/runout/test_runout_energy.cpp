@@ -212,23 +212,27 @@ double canal_error(const CanalRun& run, const Canal& c, double t) {
 
 // Gentle canal (slopes below 4 degrees, where the slope-normal model and the
 // shallow-water equations of Thacker's solution agree to 0.2 %).
+// Over the first half swing the error falls with resolution; over three
+// periods it stays below 0.5 % at every resolution (the particle noise the
+// artificial viscosity damps sets it there at the finest, not the swing).
 TEST(ThackerCanal, LensSwingsAsTheAnalyticSolutionAndConvergesWithResolution) {
-  const Canal c{0.001, 0.5, 0.5 * std::sqrt(0.5 / 0.001)};
+  const Canal c{1e-4, 0.05, 0.5 * std::sqrt(0.05 / 1e-4)};
   double previous = 1.0;
   for (const double dp : {1.0, 0.5, 0.25}) {
     CanalRun run(c, dp);
     const double T = c.period();
-    double worst = 0.0;
-    for (const double t : {0.25 * T, 0.5 * T}) {
+    double early = 0.0, late = 0.0;
+    for (const double t : {0.25 * T, 0.5 * T, T, 2.0 * T, 3.0 * T}) {
       run.w.run_to(t);
       const double e = canal_error(run, c, t);
-      worst = std::max(worst, e);
+      (t <= 0.5 * T ? early : late) = std::max(t <= 0.5 * T ? early : late, e);
       std::printf("Thacker canal dp %g (a/%.0f): t = %.2f T, L1 %.4f\n", dp, c.a() / dp, t / T, e);
     }
-    EXPECT_LT(worst, previous) << "dp " << dp;
-    previous = worst;
+    EXPECT_LT(early, previous) << "dp " << dp;
+    EXPECT_LT(late, 0.005) << "dp " << dp;
+    previous = early;
   }
-  EXPECT_LT(previous, 0.005);
+  EXPECT_LT(previous, 0.001);
 }
 
 // A steep canal (the lens climbs to 28 degrees): the mass swings across it

@@ -247,7 +247,11 @@ int example(const Args& args) {
   open_registry(registry);
   const ModelRecord& m = find_model(registry, o.positional.front());
   const std::string key = m.kind == "stage" ? "stage" : "type";
-  std::printf("%s\n", example_json(*registry.model_params(m.kind, m.name), key, m.name, 3).dump(2).c_str());
+  const Example e = runnable_example(*registry.model_params(m.kind, m.name), key, m.name, 3);
+  std::printf("%s\n", e.json.dump(2).c_str());
+  if (!e.placeholders.empty())
+    std::fprintf(stderr, "note: placeholder values (no default; put your own): %s\n",
+                 text::join(e.placeholders, ", ").c_str());
   return 0;
 }
 
