@@ -254,30 +254,19 @@ void DepthIntegratedSph::compute_depth(World& world, int iterations) {
   z_.resize(n);
   cos_.resize(n);
   sigma_.resize(n);
+  alpha_.resize(n);
   grad_.resize(n);
+  hess_.resize(n);
   auto pos = s.position();
   auto vol = s.scalar("volume");
   auto ell = s.scalar("smoothing_length");
-  auto depth = s.scalar("depth");
-  hess_.resize(n);
   terrain_->sample(pos, z_.data(), grad_.data(), hess_.data());
   for (std::size_t i = 0; i < n; ++i) cos_[i] = 1.0 / std::sqrt(1.0 + norm2(grad_[i]));
   for (int it = 0; it < iterations; ++it) {
     bin_particles(pos, ell);
-    const VariableKernel kern = kernel_;
-    const double sup = kern.support;
-#pragma omp parallel for schedule(static) if (n > parallel_min)
-    for (std::size_t i = 0; i < n; ++i) {
-      const double li = ell[i];
-      double sum = 0.0;
-      grid_.for_each_neighbour(pos[i], pos, sup * li, false, [&](Index j, const Vec3&, double r2) {
-        sum += vol[j] * kern.w(std::sqrt(r2), li);
-      });
-      sigma_[i] = sum;
-    }
+    sum_depth(world);
     update_smoothing(vol, ell);
   }
-  for (std::size_t i = 0; i < n; ++i) depth[i] = cos_[i] * sigma_[i];
   auto elev = s.scalar("elevation");
   std::copy(z_.begin(), z_.end(), elev.begin());
 }
@@ -363,9 +352,8 @@ void DepthIntegratedSph::advance(World& world, double dt) {
   for (std::size_t i = 0; i < n; ++i) cos_[i] = 1.0 / std::sqrt(1.0 + norm2(grad_[i]));
 
   // 2. Depth: sigma_i = sum_j V_j W(r_ij, l_i) (gather). The smoothing
-  //    length then follows this depth, and the depth is summed again with it,
-  //    so the pressure force sees a smoothing length consistent with the
-  //    positions: one a step behind (updated after the drift) feeds a slowly
+  //    length then follows this depth before the pressure force uses it:
+  //    one a step behind the positions (updated after the drift) fed a slowly
   //    growing transverse instability at fine resolution (a lens swinging in a
   //    parabolic canal lost its symmetry after one swing at a/89).
   bin_particles(pos, ell);
@@ -373,7 +361,6 @@ void DepthIntegratedSph::advance(World& world, double dt) {
   if (variable_smoothing_) {
     update_smoothing(vol, ell);
     bin_particles(pos, ell);
-    sum_depth(world);
   }
   const VariableKernel kern = kernel_;
   const double sup = kern.support;

@@ -24,8 +24,11 @@
 //     terrain fast enough that g_n < 0 the flow would take off: g_n is clamped
 //     at 0 (no friction), the flow keeps following the surface, and the
 //     particle-steps are counted in the status line and the summary.
-//   The depth-averaged pressure keeps g cos(theta) (the curvature correction
-//   to the earth pressure is O(h / R), left out as in the seed).
+//   The earth pressure keeps g cos(theta) (its own centrifugal correction is
+//   O(h / R), left out as in the seed), but its energy, 1/2 g cos^2 sigma per
+//   unit volume, varies with the slope under a particle: the force of that,
+//   g sigma cos^4 H grad Z, is part of a_p, so the scheme is the Lagrangian
+//   one of kinetic + potential + hydrostatic energy and keeps that total.
 //
 //   depth     sigma_i = sum_j V_j W(x_i - x_j, l_i)            (eq. 25-26, vertical)
 //             h_i = sigma_i cos(theta_i)                       (slope-normal depth)
@@ -40,8 +43,14 @@
 //             call per material, normal load g_n above), applied implicitly
 //             after the first kick: it only slows a particle and stops it
 //             within the step, and holds it while it can absorb the step's kick.
+//   viscosity Monaghan's artificial viscosity between approaching particles,
+//             alpha (artificial_viscosity) with the wave speed sqrt(g h):
+//             damps particle noise; a flow moving as a whole does not feel it.
 //   smoothing l_i = (h_over_dp) sqrt(V_i / sigma_i) (flow spreading in plan) or
-//             l_0 sigma_0 / sigma_i (spreading along one direction), within bounds.
+//             l_0 sigma_0 / sigma_i (spreading along one direction), within
+//             bounds; updated from the depth at the step's positions before
+//             the pressure force, which so never uses a smoothing length a
+//             step behind the particles.
 //   time      pressure kick, gravity kick-drift-kick (second order along curved
 //             terrain), the drift scaled to cover dt |u| of surface,
 //             dt = cfl l / (sqrt(g h) + |v|).
