@@ -369,6 +369,11 @@ void DepthIntegratedSph::advance(World& world, double dt) {
   //    mapped to the surface, plus gravity along the slope.
   double amax = 0.0;
   const double viscosity = viscosity_;
+  if (viscosity > 0.0) {
+    wave_.resize(n);
+#pragma omp parallel for schedule(static) if (n > parallel_min)
+    for (std::size_t i = 0; i < n; ++i) wave_[i] = std::sqrt(g * std::max(depth[i], 0.0));
+  }
 #pragma omp parallel for schedule(static) reduction(max : amax) if (n > parallel_min)
   for (std::size_t i = 0; i < n; ++i) {
     const double li = ell[i], ci2 = cos_[i] * cos_[i];
@@ -383,7 +388,7 @@ void DepthIntegratedSph::advance(World& world, double dt) {
       if (viscosity > 0.0 && approach < 0.0) {
         const double lm = 0.5 * (li + lj);
         const double mu = lm * approach / (r2 + 0.01 * lm * lm);
-        const double c = 0.5 * (std::sqrt(g * std::max(depth[i], 0.0)) + std::sqrt(g * std::max(depth[j], 0.0)));
+        const double c = 0.5 * (wave_[i] + wave_[j]);
         f -= viscosity * c * mu / (0.5 * (sigma_[i] + sigma_[j])) * 0.5 * (wi + wj);
       }
       a -= (vol[j] * f) * dx;

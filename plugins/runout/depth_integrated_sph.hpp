@@ -126,7 +126,7 @@ class DepthIntegratedSph final : public Stage {
   std::vector<std::string> notes_;
 
   // Scratch, re-filled every step (sized when the particle count changes).
-  std::vector<double> reach_, z_, cos_, sigma_, alpha_, speed_, density_, gn_, tau_, hold_, whole_speed_;
+  std::vector<double> reach_, z_, cos_, sigma_, alpha_, speed_, density_, gn_, tau_, hold_, whole_speed_, wave_;
   double alpha_floor_ = 0.2;  // bounds the grad-h factor of nearly isolated particles
   std::vector<Vec3> grad_, next_grad_, accel_, trial_;
   std::vector<Hessian> hess_;
