@@ -18,6 +18,8 @@ Optional:
               the sound speed and h/dp, held fixed): the error must then only stay within the
               tolerance, not fall. Default True: an error that grows with resolution fails.
   gates(run) -> list of (name, passed, value-text): stability gates (no NaN, mass, ...)
+  prepare(directory, scene, resolution)  writes files the configured scene names by a path relative to itself
+              (it is run from `directory`), e.g. a release-thickness raster made for the rung
   QUICK_INDEX index of the rung --quick runs (default 0)
   QUICK_END   simulated end time (s) of the --quick run, a short variant of that rung for costly cases
               (it must still cover the part of the run the case is about; gates read run.scene)

@@ -97,6 +97,8 @@ def run_case(case, talus, root, out, quick=False, threads=2, reuse=False):
             with open(os.path.join(root, case.SCENE)) as f:
                 template = json.load(f)
             scene = case.configure(copy.deepcopy(template), resolution, option)
+            if hasattr(case, "prepare"):
+                case.prepare(directory, scene, resolution)  # files the scene names beside it (a release raster)
             if quick and hasattr(case, "QUICK_END"):
                 scene["time"]["end"] = case.QUICK_END  # the short variant --quick runs (still through the hard part)
             scene_path = os.path.join(directory, "scene.json")
