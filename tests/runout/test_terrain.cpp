@@ -153,6 +153,30 @@ TEST(GridTerrain, SmoothedBicubicHasTheCurvatureOfAQuadraticSurface) {
     }
 }
 
+// Cell-scale noise (a +-1 cm checkerboard on a plane, the grid's shortest
+// wavelength) comes back at a third of its height at the cell centres, and
+// the curvature it adds stays that of the damped ripple: the surface does
+// not turn raster noise into large second derivatives.
+TEST(GridTerrain, SmoothedBicubicDampsCellScaleNoise) {
+  const double cell = 2.0, noise = 0.01;
+  std::string text = "ncols 16\nnrows 16\nxllcorner 0\nyllcorner 0\ncellsize 2\n";
+  for (int r = 15; r >= 0; --r)
+    for (int c = 0; c < 16; ++c)
+      text += std::to_string(0.2 * (c + 0.5) * cell + ((r + c) % 2 ? noise : -noise)) + (c < 15 ? " " : "\n");
+  auto t = make_grid_terrain(read_esri_ascii(write_file("noisy.asc", text), true), "noisy.asc");
+  double worst_z = 0.0, worst_h = 0.0;
+  for (int r = 3; r < 13; ++r)
+    for (int c = 3; c < 13; ++c) {
+      const double x = (c + 0.5) * cell, y = (r + 0.5) * cell;
+      worst_z = std::max(worst_z, std::abs(t->elevation(x, y) - 0.2 * x));
+      const Hessian h = t->hessian(x, y);
+      worst_h = std::max({worst_h, std::abs(h.xx), std::abs(h.yy), std::abs(h.xy)});
+    }
+  EXPECT_NEAR(worst_z, noise / 9.0, 1e-9);  // (1/3 per axis)^2 for a checkerboard
+  // An interpolating surface through the noise has |Z_xx| = 8 noise / cell^2 at the nodes.
+  EXPECT_LT(worst_h, 8.0 * noise / (cell * cell) / 3.0);
+}
+
 // A no-data cell leaves the surface undefined where the 4 x 4 control points
 // include it; elsewhere the surface is there.
 TEST(GridTerrain, NoDataCellLeavesTheSurfaceUndefinedAroundIt) {
