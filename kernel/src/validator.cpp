@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
+#include <set>
+#include <vector>
 
 #include "talus/error.hpp"
 #include "text.hpp"
@@ -412,9 +415,65 @@ ParamValues validate(const ParamSet& set, const json& j, const std::string& poin
   return v.object(set, j, pointer, owner);
 }
 
+namespace {
+
+// Follows the parser through objects and arrays to refuse a key given twice in
+// one object: the parser would keep the last value and drop the first without
+// a word (a scene with two "dp" would run with the second).
+class DuplicateKeys {
+ public:
+  explicit DuplicateKeys(const std::string& file) : file_(file) {}
+
+  bool operator()(int, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+      case json::parse_event_t::array_start:
+        element();
+        frames_.push_back({event == json::parse_event_t::array_start, 0, {}, {}});
+        break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        if (!frames_.empty()) frames_.pop_back();
+        break;
+      case json::parse_event_t::key: {
+        Frame& f = frames_.back();
+        f.key = parsed.get<std::string>();
+        if (!f.keys.insert(f.key).second)
+          throw InputError("error: " + file_ + ": " + pointer() + ": key given twice in one object; the second "
+                           "value would silently replace the first: keep one");
+        break;
+      }
+      case json::parse_event_t::value: element(); break;
+    }
+    return true;
+  }
+
+ private:
+  struct Frame {
+    bool array;
+    std::size_t index;  // array: elements begun so far
+    std::string key;    // object: the key being read
+    std::set<std::string> keys;
+  };
+  void element() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+  }
+  std::string pointer() const {
+    std::string p;
+    for (const Frame& f : frames_)
+      p += "/" + (f.array ? std::to_string(f.index - 1) : text::pointer_token(f.key));
+    return p;
+  }
+  const std::string& file_;
+  std::vector<Frame> frames_;
+};
+
+}  // namespace
+
 json parse_json(std::string_view text, const std::string& file) {
   try {
-    return json::parse(text.begin(), text.end(), nullptr, true, /*ignore_comments=*/true);
+    DuplicateKeys duplicates(file);
+    return json::parse(text.begin(), text.end(), std::ref(duplicates), true, /*ignore_comments=*/true);
   } catch (const json::parse_error& e) {
     // Report line and column instead of the byte offset.
     std::size_t line = 1, column = 1;

@@ -7,6 +7,7 @@
 
 #include "esri_ascii.hpp"
 #include "follow_surface.hpp"
+#include "talus/output_name.hpp"
 #include "talus/error.hpp"
 #include "talus/world.hpp"
 
@@ -64,6 +65,7 @@ ParamSet DepthIntegratedSph::describe() {
     if (v.real("min_smoothing_ratio") > 1.0 || v.real("max_smoothing_ratio") < 1.0)
       d.error(v, "max_smoothing_ratio", "the smoothing bounds must include 1", "min_smoothing_ratio <= 1 <= max");
   });
+  check_output_name(p, "rasters");
   return p;
 }
 

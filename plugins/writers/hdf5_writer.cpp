@@ -6,6 +6,7 @@
 #include "field_select.hpp"
 #include "file_io.hpp"
 #include "h5_util.hpp"
+#include "talus/output_name.hpp"
 #include "talus/blocks.hpp"
 #include "talus/world.hpp"
 
@@ -25,6 +26,7 @@ ParamSet Hdf5Writer::describe() {
       .doc("storage of real fields (positions included); single halves the file size");
   p.boolean("sync").default_value(true).doc(
       "fsync each finished file before it replaces the previous one (survives a power loss)");
+  check_output_name(p, "file");
   return p;
 }
 

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "field_select.hpp"
+#include "talus/output_name.hpp"
 #include "talus/blocks.hpp"
 #include "talus/world.hpp"
 #include "vtu_format.hpp"  // format_real
@@ -87,6 +88,7 @@ ParamSet ProbesWriter::describe() {
   p.boolean("block_forces")
       .default_value(false)
       .doc("external force on every block (the coupling force of the last step): NAME_fx, NAME_fy[, NAME_fz]");
+  check_output_name(p, "file");
   return p;
 }
 

@@ -6,6 +6,7 @@
 
 #include "field_select.hpp"
 #include "file_io.hpp"
+#include "talus/output_name.hpp"
 #include "talus/world.hpp"
 
 namespace talus::writers {
@@ -25,6 +26,7 @@ ParamSet VtuWriter::describe() {
       .doc("storage of real fields (positions included): Float64 or Float32");
   p.boolean("sync").default_value(true).doc(
       "fsync each finished file before it is renamed into place (survives a power loss)");
+  check_output_name(p, "prefix");
   return p;
 }
 

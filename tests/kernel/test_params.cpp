@@ -136,6 +136,26 @@ TEST(Validator, SyntaxErrorsGiveLineAndColumn) {
   }
 }
 
+// A key given twice in one object is refused with its pointer (the parser
+// alone keeps the last value and drops the first silently).
+TEST(Validator, DuplicateKeyIsAnErrorNamingItsPointer) {
+  auto message = [](const std::string& text) {
+    try {
+      parse_json(text, "scene.json");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no exception");
+  };
+  EXPECT_EQ(message(R"({"dp": 0.1, "dp": 0.2})").rfind("error: scene.json: /dp: key given twice", 0), 0u);
+  const std::string nested = message(R"({"bodies": [{"name": "a"}, {"name": "b", "shape": {"box": {}, "box": {}}}]})");
+  EXPECT_EQ(nested.rfind("error: scene.json: /bodies/1/shape/box: key given twice", 0), 0u) << nested;
+  const std::string after_array = message(R"({"a": [1, [2, 3], {"x": 1}], "b": {"y": 1, "y": 2}})");
+  EXPECT_EQ(after_array.rfind("error: scene.json: /b/y: key given twice", 0), 0u) << after_array;
+  // The same key in two objects is fine.
+  EXPECT_NO_THROW(parse_json(R"({"a": {"x": 1}, "b": {"x": 2}, "c": [{"x": 1}, {"x": 2}]})", "scene.json"));
+}
+
 TEST(Validator, ParamsFromJsonThrowsEveryProblem) {
   try {
     params_from_json(hbp_like(), R"({"viscosity": 0})");

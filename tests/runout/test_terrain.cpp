@@ -195,6 +195,13 @@ TEST(GridTerrain, NoDataCellLeavesTheSurfaceUndefinedAroundIt) {
   EXPECT_TRUE(full->defined(15.0, 23.0));
 }
 
+TEST(StageSetup, RasterPrefixOutsideTheOutputFolderIsRefused) {
+  expect_input_error([] {
+    params_from_json(DepthIntegratedSph::describe(),
+                     R"({"terrain": {"plane": {"slope": 0}}, "release_thickness": 1, "rasters": "../maps/r"})", 2);
+  }, {"/rasters: ", "a path, not a file name"});
+}
+
 TEST(StageSetup, ReleaseOutsideTheDemIsAnError) {
   const std::string dem = write_file("small_dem.asc", plane_asc());
   test::RunoutWorld w({0, 0, 0}, {100, 100, 0}, 1.0);

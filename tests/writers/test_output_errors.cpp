@@ -39,6 +39,29 @@ std::string open_error(Writer& writer, const std::string& directory, const World
   return {};
 }
 
+// Output names stay inside the output folder: refused at validation, with
+// the JSON pointer, before anything is written.
+TEST(OutputErrors, FileNamesOutsideTheOutputFolderAreRefusedAtValidation) {
+  auto message = [](const ParamSet& set, const std::string& json) {
+    try {
+      params_from_json(set, json);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const ParamSet h5 = writers::Hdf5Writer::describe();
+  for (const char* bad : {"../x.h5part", "/tmp/x.h5part", "sub/x.h5part", "..", ""})
+    EXPECT_NE(message(h5, std::string(R"({"file": ")") + bad + "\"}").find("/file: "), std::string::npos) << bad;
+  EXPECT_NE(message(h5, R"({"file": "../x.h5part"})").find("a path, not a file name"), std::string::npos);
+  EXPECT_NE(message(h5, "{\"file\": \"" + std::string(300, 'a') + "\"}").find("300 characters"), std::string::npos);
+  EXPECT_NE(message(h5, R"({"file": "a\u0000b"})").find("control character"), std::string::npos);
+  EXPECT_EQ(message(h5, R"({"file": "run.h5part"})"), "accepted");
+  EXPECT_NE(message(writers::ProbesWriter::describe(), R"({"file": "../p.csv", "points": [[0, 0, 0]]})").find("/file: "),
+            std::string::npos);
+  EXPECT_NE(message(writers::VtuWriter::describe(), R"({"prefix": "../v"})").find("/prefix: "), std::string::npos);
+}
+
 TEST(OutputErrors, FolderThatIsAFileNamesThePathAndTheReason) {
   TempDir dir("errors-notdir");
   World w;
