@@ -1,4 +1,7 @@
 #include "talus/params.hpp"
+
+#include <cstdio>
+
 #include "text.hpp"
 
 namespace talus {
@@ -11,11 +14,31 @@ void Diagnostics::error(std::string file, std::string pointer, std::string messa
   items_.push_back({std::move(file), pointer.empty() ? "/" : std::move(pointer), std::move(message), std::move(hint)});
 }
 
+namespace {
+
+// Control characters a scene smuggled into a key or value, written as \u00XX:
+// a NUL would otherwise end the printed report there.
+std::string printable(const std::string& s) {
+  std::string out;
+  for (const char c : s) {
+    if (static_cast<unsigned char>(c) >= 0x20 && c != 0x7f) {
+      out += c;
+      continue;
+    }
+    char code[8];
+    std::snprintf(code, sizeof code, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+    out += code;
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string Diagnostics::format() const {
   std::string out;
   for (const auto& d : items_) {
-    out += "error: " + d.file + ": " + d.pointer + ": " + d.message + "\n";
-    if (!d.hint.empty()) out += "       " + d.hint + "\n";
+    out += "error: " + printable(d.file) + ": " + printable(d.pointer) + ": " + printable(d.message) + "\n";
+    if (!d.hint.empty()) out += "       " + printable(d.hint) + "\n";
   }
   return out;
 }

@@ -1,5 +1,6 @@
 #include "validator.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <functional>
@@ -15,16 +16,25 @@ namespace {
 
 using nlohmann::json;
 
+// A value as an error message quotes it: short, and never the whole of a
+// large or deeply nested one.
 std::string describe(const json& j) {
-  std::string s = j.dump();
-  if (s.size() > 40) s = s.substr(0, 37) + "...";
+  constexpr std::size_t shown = 37;
   switch (j.type()) {
-    case json::value_t::string: return "the string " + s;
-    case json::value_t::boolean: return "the boolean " + s;
+    case json::value_t::string: {
+      const auto& s = j.get_ref<const std::string&>();
+      return "the string " + json(s.substr(0, shown)).dump() + (s.size() > shown ? "..." : "");
+    }
+    case json::value_t::boolean: return "the boolean " + j.dump();
     case json::value_t::null: return "null";
-    case json::value_t::array: return "an array " + s;
+    case json::value_t::array: {
+      const bool flat = std::none_of(j.begin(), j.end(), [](const json& e) { return e.is_structured(); });
+      std::string s = flat && j.size() <= 8 ? j.dump() : "";
+      if (s.empty() || s.size() > shown + 3) return "an array of " + std::to_string(j.size()) + " values";
+      return "an array " + s;
+    }
     case json::value_t::object: return "an object";
-    default: return s;
+    default: return j.dump();
   }
 }
 
@@ -56,7 +66,7 @@ class Validator {
     const std::size_t errors_before = c_.diagnostics->size();
     // Unknown keys first, so a misspelt key and its "missing" twin read together.
     for (auto it = j.begin(); it != j.end(); ++it) {
-      if (set.find(it.key()) || (extra && extra->find(it.key())) || it.key() == skip) continue;
+      if (set.find(it.key()) || (extra && extra->find(it.key())) || (!skip.empty() && it.key() == skip)) continue;
       std::vector<std::string> known = names_of(set);
       if (extra)
         for (auto& n : names_of(*extra)) known.push_back(n);
@@ -418,17 +428,22 @@ ParamValues validate(const ParamSet& set, const json& j, const std::string& poin
 namespace {
 
 // Follows the parser through objects and arrays to refuse a key given twice in
-// one object: the parser would keep the last value and drop the first without
-// a word (a scene with two "dp" would run with the second).
-class DuplicateKeys {
+// one object (the parser would keep the last value and drop the first without
+// a word: a scene with two "dp" would run with the second), and nesting deeper
+// than any scene needs (what follows would recurse through it).
+class ParseChecks {
  public:
-  explicit DuplicateKeys(const std::string& file) : file_(file) {}
+  explicit ParseChecks(const std::string& file) : file_(file) {}
+  static constexpr std::size_t deepest = 64;
 
   bool operator()(int, json::parse_event_t event, json& parsed) {
     switch (event) {
       case json::parse_event_t::object_start:
       case json::parse_event_t::array_start:
         element();
+        if (frames_.size() >= deepest)
+          throw InputError("error: " + file_ + ": " + pointer() + ": nested deeper than " + std::to_string(deepest) +
+                           " levels; no scene needs that");
         frames_.push_back({event == json::parse_event_t::array_start, 0, {}, {}});
         break;
       case json::parse_event_t::object_end:
@@ -472,8 +487,8 @@ class DuplicateKeys {
 
 json parse_json(std::string_view text, const std::string& file) {
   try {
-    DuplicateKeys duplicates(file);
-    return json::parse(text.begin(), text.end(), std::ref(duplicates), true, /*ignore_comments=*/true);
+    ParseChecks checks(file);
+    return json::parse(text.begin(), text.end(), std::ref(checks), true, /*ignore_comments=*/true);
   } catch (const json::parse_error& e) {
     // Report line and column instead of the byte offset.
     std::size_t line = 1, column = 1;

@@ -156,6 +156,36 @@ TEST(Validator, DuplicateKeyIsAnErrorNamingItsPointer) {
   EXPECT_NO_THROW(parse_json(R"({"a": {"x": 1}, "b": {"x": 2}, "c": [{"x": 1}, {"x": 2}]})", "scene.json"));
 }
 
+// Deep nesting is refused while parsing (what follows would recurse through
+// it), an empty key is an unknown parameter like any other, and a control
+// character or a huge value in the input never cuts or floods the report.
+TEST(Validator, DeepNestingEmptyKeysAndHostileValuesGiveShortWholeMessages) {
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  try {
+    parse_json(deep, "deep.json");
+    FAIL() << "no exception";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("nested deeper than 64 levels"), std::string::npos);
+  }
+  ParamSet p{"m", "m"};
+  p.real("viscosity").doc("v");
+  try {
+    params_from_json(p, R"({"": 1, "viscosity": 1})");
+    FAIL() << "the empty key was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/: unknown parameter"), std::string::npos) << e.what();
+  }
+  try {
+    params_from_json(p, "{\"vis\\u0000cosity\": 1, \"viscosity\": \"" + std::string(1000000, 'x') + "\"}");
+    FAIL() << "no exception";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("/vis\\u0000cosity: unknown parameter"), std::string::npos) << what.substr(0, 300);
+    EXPECT_NE(what.find("/viscosity: expected a number"), std::string::npos) << what.substr(0, 300);
+    EXPECT_LT(what.size(), 1000u);
+  }
+}
+
 TEST(Validator, ParamsFromJsonThrowsEveryProblem) {
   try {
     params_from_json(hbp_like(), R"({"viscosity": 0})");
