@@ -505,6 +505,23 @@ json parse_json(std::string_view text, const std::string& file) {
     if (colon != std::string::npos) what = what.substr(colon + 2);
     throw InputError("error: " + file + ":" + std::to_string(line) + ":" + std::to_string(column) +
                      ": JSON syntax error: " + what);
+  } catch (const json::out_of_range& e) {
+    // A number beyond a double (1e999): the parser names the token; find it for the line and column.
+    std::string what = e.what();
+    const auto open = what.find('\''), close = what.rfind('\'');
+    const std::string token = open != std::string::npos && close > open ? what.substr(open + 1, close - open - 1) : "";
+    std::size_t line = 1, column = 1;
+    const std::size_t at = token.empty() ? std::string_view::npos : text.find(token);
+    for (std::size_t k = 0; at != std::string_view::npos && k < at; ++k) {
+      if (text[k] == '\n') {
+        ++line;
+        column = 1;
+      } else {
+        ++column;
+      }
+    }
+    throw InputError("error: " + file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": the number " +
+                     token + " is out of range (beyond what a double holds)");
   }
 }
 

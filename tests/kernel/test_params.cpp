@@ -186,6 +186,15 @@ TEST(Validator, DeepNestingEmptyKeysAndHostileValuesGiveShortWholeMessages) {
   }
 }
 
+TEST(Validator, NumberBeyondADoubleIsAnInputErrorWithLineAndColumn) {
+  try {
+    parse_json("{\n  \"h\": 1e999\n}", "scene.json");
+    FAIL() << "no exception";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "error: scene.json:2:8: the number 1e999 is out of range (beyond what a double holds)");
+  }
+}
+
 TEST(Validator, ParamsFromJsonThrowsEveryProblem) {
   try {
     params_from_json(hbp_like(), R"({"viscosity": 0})");
