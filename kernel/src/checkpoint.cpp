@@ -60,7 +60,7 @@ class In {
     const std::string t = text();
     if (t.size() % sizeof(T)) corrupt();
     std::vector<T> v(t.size() / sizeof(T));
-    std::memcpy(v.data(), t.data(), t.size());
+    if (!v.empty()) std::memcpy(v.data(), t.data(), t.size());  // an empty vector's data() may be null
     return v;
   }
   [[noreturn]] void corrupt() const { throw InputError("error: " + path_ + ": checkpoint is truncated or corrupt"); }

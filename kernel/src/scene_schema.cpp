@@ -117,7 +117,8 @@ ParamSet checkpoint_params() {
 
 ParamSet kernel_common() {
   ParamSet k{"kernel", "keys of the smoothing kernel entry"};
-  k.real("h_over_dp").greater_than(0.0).default_value(1.3).doc("smoothing length h as a multiple of the finest dp");
+  k.real("h_over_dp").min(0.5).max(5.0).default_value(1.3)
+      .doc("smoothing length h as a multiple of the finest dp (usually 1 to 2; beyond 5 the neighbour counts explode)");
   return k;
 }
 

@@ -538,10 +538,13 @@ int Simulation::run(const RunOptions& options) {
         write_due_outputs(true);
         const std::string path = checkpoint();
         for (auto& w : writers_) w.writer->close(world_);
+        // The resume command repeats the options that shape the run (threads: the same result bit for bit).
+        const std::string threads = options.threads > 0 ? " --threads " + std::to_string(options.threads) : "";
         std::printf("talus: stopped by %s at step %llu (t = %s s); checkpoint written.\n"
-                    "       resume with: talus run %s --out %s --restart %s\n",
+                    "       resume with: talus run %s --out %s --restart %s%s\n",
                     sig == SIGINT ? "SIGINT" : "SIGTERM", static_cast<unsigned long long>(world_.step),
-                    fixed(world_.time, 6).c_str(), scene_.path.c_str(), output_directory_.c_str(), path.c_str());
+                    fixed(world_.time, 6).c_str(), scene_.path.c_str(), output_directory_.c_str(), path.c_str(),
+                    threads.c_str());
         return 128 + sig;
       }
     }

@@ -104,6 +104,24 @@ TEST(Cli, WcsphRestartWithWallsContinuesBitForBit) {
       << "restarted wcsph run differs from the uninterrupted one";
 }
 
+// A smoothing length far outside what SPH uses is refused at validation:
+// 1e-308 dp made the kernel table read out of bounds, 1e9 dp overflowed the
+// viscous support count.
+TEST(Cli, SmoothingLengthOutsideItsRangeIsRefused) {
+  const std::string base = read_file(std::string(TALUS_SOURCE_DIR) + "/tests/verification/water_drop_2d.json");
+  for (const char* h : {"1e-308", "1e9", "0.2"}) {
+    std::string text = base;
+    const auto at = text.find("\"h_over_dp\": ");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, text.find_first_of(",}", at) - at, std::string("\"h_over_dp\": ") + h);
+    const std::string scene = fresh_dir("h_range") + "_" + h + ".json";
+    talus::test::write_file(scene, text);
+    const auto r = run_command(exe + " validate " + scene);
+    EXPECT_EQ(r.exit_code, 2) << h << "\n" << r.output;
+    EXPECT_NE(r.output.find("/kernel/h_over_dp: "), std::string::npos) << r.output;
+  }
+}
+
 TEST(Cli, NonFiniteValueStopsWithParticleBodyAndPosition) {
   const std::string dir = fresh_dir("nan");
   const std::string scene = dir + "_scene.json";
@@ -131,13 +149,15 @@ TEST(Cli, SigintWritesAResumableCheckpoint) {
   talus::test::write_file(scene, text);
   const std::string log = dir + "_log.txt";
   // Start in the background, interrupt after a while, wait for it.
-  const auto r = run_command("(" + exe + " run " + scene + " --out " + dir + " > " + log +
+  const auto r = run_command("(" + exe + " run " + scene + " --threads 1 --out " + dir + " > " + log +
                              " 2>&1 & pid=$!; sleep 0.1; kill -INT $pid; wait $pid; echo exit=$?)");
   const std::string out = read_file(log);
   EXPECT_NE(r.output.find("exit=130"), std::string::npos) << r.output << out;
   const auto pos = out.find("--restart ");
   ASSERT_NE(pos, std::string::npos) << out;
-  const std::string checkpoint = out.substr(pos + 10, out.find('\n', pos) - pos - 10);
+  const std::string checkpoint = out.substr(pos + 10, out.find_first_of(" \n", pos + 10) - pos - 10);
+  // The printed resume command keeps the thread count (the result is bit for bit only with the same one).
+  EXPECT_EQ(out.substr(pos + 10 + checkpoint.size(), 12), " --threads 1") << out;
   ASSERT_TRUE(fs::exists(checkpoint)) << checkpoint;
   const auto resumed = run_command(exe + " run " + scene + " --quiet --out " + dir + " --restart " + checkpoint);
   EXPECT_EQ(resumed.exit_code, 0) << resumed.output;
