@@ -9,7 +9,8 @@ namespace talus::writers {
 
 void declare_fields_parameter(ParamSet& p) {
   p.string_list("fields").optional().doc(
-      "particle fields to write (position is always written); default: every field marked for output");
+      "particle fields to write (position, and for particle files id and body, are always written); default: every "
+      "field marked for output");
 }
 
 std::string field_names(const ParticleStore& store) {
@@ -21,7 +22,8 @@ std::string field_names(const ParticleStore& store) {
   return out;
 }
 
-std::vector<FieldInfo> select_fields(const ParticleStore& store, const ParamValues& params, bool strict) {
+std::vector<FieldInfo> select_fields(const ParticleStore& store, const ParamValues& params, bool strict,
+                                     bool identity) {
   std::vector<FieldInfo> out;
   auto add = [&](const FieldInfo& f) {
     if (f.name == "position") return;
@@ -34,6 +36,9 @@ std::vector<FieldInfo> select_fields(const ParticleStore& store, const ParamValu
       if (f.output) add(f);
     return out;
   }
+  if (identity)
+    for (const char* name : {"id", "body"})
+      if (store.has(name)) add(store.info(name));
   for (const auto& name : params.strings("fields")) {
     if (store.has(name)) {
       add(store.info(name));

@@ -251,6 +251,9 @@ TEST(Hdf5Writer, ChosenFieldsSinglePrecisionAndBoundaryFile) {
   ASSERT_GE(f.id, 0);
   EXPECT_GT(H5Lexists(f.id, "Step#0/pressure", H5P_DEFAULT), 0);
   EXPECT_EQ(H5Lexists(f.id, "Step#0/velocity_0", H5P_DEFAULT), 0);
+  // A field list keeps the identity fields: particles can still be followed and told apart.
+  EXPECT_GT(H5Lexists(f.id, "Step#0/id", H5P_DEFAULT), 0);
+  EXPECT_GT(H5Lexists(f.id, "Step#0/body", H5P_DEFAULT), 0);
   EXPECT_EQ(H5Lexists(f.id, "Blocks", H5P_DEFAULT), 0);  // no blocks in this world
   hid_t set = H5Dopen2(f.id, "Step#0/pressure", H5P_DEFAULT);
   hid_t type = H5Dget_type(set);
