@@ -33,6 +33,7 @@ void Progress::update(double time, double end_time, double dt, std::uint64_t ste
   if (!started_) {
     started_ = true;
     first_step_ = last_step_ = step;
+    first_time_ = time;
   }
   const auto now = std::chrono::steady_clock::now();
   const double since = std::chrono::duration<double>(now - last_).count();
@@ -40,7 +41,7 @@ void Progress::update(double time, double end_time, double dt, std::uint64_t ste
   const double rate = (step - last_step_) / since;
   const double total = elapsed();
   const double fraction = end_time > 0 ? time / end_time : 0.0;
-  const double eta = fraction > 0 ? total * (1.0 - fraction) / fraction : NAN;
+  const double eta = eta_seconds(total, first_time_, time, end_time);
   char line[320];
   std::snprintf(line, sizeof line, "t = %.4g / %.4g s (%5.1f%%)  dt = %.3g s  step %llu  %.4g steps/s  %zu particles  ETA %s%s%s",
                 time, end_time, 100.0 * fraction, dt, static_cast<unsigned long long>(step), rate, particles,

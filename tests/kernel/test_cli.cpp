@@ -67,6 +67,18 @@ TEST(Cli, ValidatePlanAndDocOnAGoodScene) {
   EXPECT_EQ(run_command(exe + " doc balistic").exit_code, 2);
 }
 
+// `talus doc` covers the scene file's own sections too, not only models.
+TEST(Cli, DocDocumentsSceneSectionsAndShapes) {
+  for (const auto& [name, key] : std::vector<std::pair<std::string, std::string>>{
+           {"box_walls", "open"}, {"time", "end"}, {"bodies", "material"}, {"domain", "periodic"}, {"outputs", "every"}}) {
+    const auto r = run_command(exe + " doc " + name);
+    EXPECT_EQ(r.exit_code, 0) << name << "\n" << r.output;
+    EXPECT_NE(r.output.find("(scene file)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("  " + key + " "), std::string::npos) << name << " lacks " << key << "\n" << r.output;
+  }
+  EXPECT_EQ(run_command(exe + " doc no_such_thing").exit_code, 2);
+}
+
 TEST(Cli, RestartContinuesBitForBit) {
   const std::string a = fresh_dir("restart_a"), b = fresh_dir("restart_b");
   const auto full = run_command(exe + " run " + scenes + "/ballistic.json --quiet --threads 2 --out " + a);

@@ -104,6 +104,29 @@ std::string share_dir() {
 #endif
 }
 
+// The part of the scene file's declaration named `name`: an object key
+// ("time", "bodies") or a one-of alternative ("box_walls", "plane"), searched
+// breadth first so a top-level section wins over a nested namesake.
+const ParamSet* find_section(const ParamSet& root, const std::string& name) {
+  std::vector<const ParamSet*> level{&root};
+  while (!level.empty()) {
+    std::vector<const ParamSet*> next;
+    for (const ParamSet* set : level)
+      for (const auto& spec : set->specs()) {
+        if (spec.nested) {
+          if (spec.name == name) return spec.nested.get();
+          next.push_back(spec.nested.get());
+        }
+        for (const auto& [alternative, alt_set] : spec.alternatives) {
+          if (alternative == name) return alt_set.get();
+          next.push_back(alt_set.get());
+        }
+      }
+    level = std::move(next);
+  }
+  return nullptr;
+}
+
 const ModelRecord& find_model(PluginRegistry& registry, const std::string& spec) {
   // "NAME" or "KIND/NAME".
   std::string kind, name = spec;
@@ -235,8 +258,15 @@ int doc(const Args& args) {
   }
   PluginRegistry registry;
   open_registry(registry);
-  const ModelRecord& m = find_model(registry, o.positional.front());
-  std::fputs(doc_text(*registry.model_params(m.kind, m.name), m.kind).c_str(), stdout);
+  try {
+    const ModelRecord& m = find_model(registry, o.positional.front());
+    std::fputs(doc_text(*registry.model_params(m.kind, m.name), m.kind).c_str(), stdout);
+  } catch (const InputError&) {
+    // Not a model: a section of the scene file (bodies, box_walls, time, ...)?
+    const ParamSet* section = find_section(scene_params(), o.positional.front());
+    if (!section) throw;
+    std::fputs(doc_text(*section, "scene file").c_str(), stdout);
+  }
   return 0;
 }
 
