@@ -500,8 +500,11 @@ json parse_json(std::string_view text, const std::string& file) {
         ++column;
       }
     }
+    // "[json.exception.parse_error.101] parse error at line L, column C: REASON"; the reason may quote the
+    // last token read, which can itself hold ": ".
     std::string what = e.what();
-    const auto colon = what.rfind(": ");
+    const auto at = what.find("column ");
+    const auto colon = what.find(": ", at == std::string::npos ? 0 : at);
     if (colon != std::string::npos) what = what.substr(colon + 2);
     throw InputError("error: " + file + ":" + std::to_string(line) + ":" + std::to_string(column) +
                      ": JSON syntax error: " + what);

@@ -155,7 +155,8 @@ void DepthIntegratedSph::setup(World& world) {
                                      ? "body '" + world.bodies[body[i]].name + "'" : "a fluid body";
         terrain_values.fail("file", "the release of " + name + " reaches " +
                                         format("(%.6g, %.6g)", pos[i].x, pos[i].y) +
-                                        ", where the DEM has no surface (a no-data cell among the 4 x 4 cells its "
+                                        ", where the DEM '" + terrain_values.string("file") +
+                                        "' has no surface (a no-data cell among the 4 x 4 cells its "
                                         "bicubic surface and curvature need); fill the hole (e.g. gdal_fillnodata) or "
                                         "move the release");
       }
@@ -338,7 +339,8 @@ void DepthIntegratedSph::advance(World& world, double dt) {
   if (n == 0) return;
   if (speed_.size() != n) {
     z_.resize(n); cos_.resize(n); sigma_.resize(n); speed_.resize(n); density_.resize(n); gn_.resize(n);
-    tau_.resize(n); hold_.resize(n); whole_speed_.resize(n); grad_.resize(n); next_grad_.resize(n); trial_.resize(n); hess_.resize(n); accel_.resize(n); alpha_.resize(n);
+    tau_.resize(n); hold_.resize(n); whole_speed_.resize(n); grad_.resize(n); next_grad_.resize(n); trial_.resize(n);
+    hess_.resize(n); accel_.resize(n); alpha_.resize(n);
   }
   auto pos = s.position();
   auto vel = s.vector("velocity");

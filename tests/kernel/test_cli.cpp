@@ -79,6 +79,15 @@ TEST(Cli, DocDocumentsSceneSectionsAndShapes) {
   EXPECT_EQ(run_command(exe + " doc no_such_thing").exit_code, 2);
 }
 
+// `talus example` says which of the values it printed are placeholders.
+TEST(Cli, ExampleNamesItsPlaceholders) {
+  const auto r = run_command(exe + " example depth_integrated_sph");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("\"release_thickness\""), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("note: placeholder values (no default; put your own): terrain"), std::string::npos)
+      << r.output;
+}
+
 TEST(Cli, RestartContinuesBitForBit) {
   const std::string a = fresh_dir("restart_a"), b = fresh_dir("restart_b");
   const auto full = run_command(exe + " run " + scenes + "/ballistic.json --quiet --threads 2 --out " + a);

@@ -186,6 +186,16 @@ TEST(Validator, DeepNestingEmptyKeysAndHostileValuesGiveShortWholeMessages) {
   }
 }
 
+TEST(Validator, SyntaxErrorKeepsItsReasonWhenTheLastTokenHoldsAColon) {
+  try {
+    parse_json("{\"a\": \"x: y\" 1}", "scene.json");
+    FAIL() << "no exception";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("JSON syntax error: syntax error while parsing object"), std::string::npos) << what;
+  }
+}
+
 TEST(Validator, NumberBeyondADoubleIsAnInputErrorWithLineAndColumn) {
   try {
     parse_json("{\n  \"h\": 1e999\n}", "scene.json");

@@ -93,18 +93,16 @@ struct SlopeToFloor {
 };
 
 SlopeToFloor slope_to_floor(double transition, double dp) {
-  const double slope = 30.0, foot = 60.0, width = 8 * dp;
+  const double foot = 60.0, width = 8 * dp;
   RunoutWorld w({-5.0, 0.0, 0.0}, {400.0, width, 0.0}, dp, 1.3, {false, true, false});
   const int m = w.add_material("debris", rho, nullptr);
   w.fill_box({0.0, 0.0, 0.0}, {10.0, width, 0.0}, m);
   w.make_stage(R"({"terrain": {"plane_runout": {"slope": 30, "foot": 60, "transition_length": )" +
                    std::to_string(transition) + R"(}}, "release_thickness": 0.5})",
                60.0);
-  (void)slope;
   const Energy e0 = energy(w);
   const double floor_start = foot + 0.5 * transition + 2.0 * w.world.h * 3.0;
   double t = 0.0;
-  auto pos = w.world.fluid.position();
   auto all_on_floor = [&] {
     for (const Vec3& p : w.world.fluid.position())
       if (p.x < floor_start) return false;
@@ -114,7 +112,6 @@ SlopeToFloor slope_to_floor(double transition, double dp) {
     t += 0.1;
     w.run_to(t);
   }
-  (void)pos;
   EXPECT_TRUE(all_on_floor()) << "the mass should reach the floor within 30 s";
   const Energy e = energy(w);
   SlopeToFloor r;
@@ -201,11 +198,9 @@ double canal_error(const CanalRun& run, const Canal& c, double t) {
   double err = 0.0, ref = 0.0;
   const double dy = 0.05;
   for (double y = c.centre(t) - 1.5 * c.a(); y <= c.centre(t) + 1.5 * c.a(); y += dy) {
-    const double slope = 2.0 * c.k * y, cosine = 1.0 / std::sqrt(1.0 + slope * slope);
     const double exact = c.depth(y, t);
-    err += std::abs(run.w.depth_at({2.0 * run.w.world.dp, y, 0.0}) - exact);  // depth_at(cos 1): vertical
+    err += std::abs(run.w.depth_at({2.0 * run.w.world.dp, y, 0.0}) - exact);  // cosine 1: the vertical depth
     ref += exact;
-    (void)cosine;
   }
   return err / ref;
 }

@@ -219,7 +219,7 @@ TEST(StageSetup, ReleaseWhereTheDemHasNoSurfaceIsAnErrorNamingTheFileAndPointer)
   w.fill_box({14.0, 22.0, 0}, {16.0, 24.0, 0}, m);
   expect_input_error(
       [&] { w.make_stage(R"({"terrain": {"dem": {"file": ")" + dem + R"("}}, "release_thickness": 1})", 1.0); },
-      {"/terrain/dem/file", "no surface", "no-data", "mass0"});
+      {"/terrain/dem/file", dem, "no surface", "no-data", "mass0"});
 }
 
 std::unique_ptr<Terrain> analytic(const std::string& json) {
