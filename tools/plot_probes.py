@@ -5,7 +5,7 @@ against a reference data file.
 The probe file has '#' comment lines (units, probe positions), a header row
 and one row per output; a last line without its newline (a run killed while
 writing) is ignored. A reference file is any CSV with '#' comment lines and a
-header row, like the validation data in shared/validation-data/*.csv; its first two columns are used
+header row, like the validation data in share/validation-data/*.csv; its first two columns are used
 unless --ref-columns names others.
 
 Examples:
@@ -14,7 +14,7 @@ Examples:
   # Buchner (2002) pressure at P1, non-dimensional (H = 0.6 m, rho = 1000):
   tools/plot_probes.py out/dam_probes.csv --columns P1_pressure \\
       --time-scale 4.0435 --value-scale 1.699e-4 \\
-      --reference /work/shared/validation-data/dambreak2d_buchner2002_P1_pysph.csv \\
+      --reference share/validation-data/dambreak2d_buchner2002_P1_pysph.csv \\
       --xlabel 't sqrt(g/H)' --ylabel 'p/(rho g H)'
 
 Needs Debian's python3-numpy and python3-matplotlib.

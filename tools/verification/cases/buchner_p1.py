@@ -54,7 +54,7 @@ SCENE = "share/scenes/dam_break_2d_buchner.json"
 LADDER = [0.03, 0.02, 0.015, 0.01, 0.0075, 0.005]  # H/20, H/30, H/40, H/60, H/80, H/120
 TOLERANCE = {0.03: 0.25, 0.02: 0.25, 0.015: 0.25, 0.01: 0.25, 0.0075: 0.25, 0.005: 0.25}
 ERROR_LABEL = "|mean p_P1 - mean p_exp| / mean p_exp over t sqrt(g/H) in [4, 5] (wall sensor)"
-REFERENCE = "Buchner (2002) P1, digitised in pypr/pysph (shared/validation-data/dambreak2d_buchner2002_P1_pysph.csv)"
+REFERENCE = "Buchner (2002) P1, digitised in pypr/pysph (share/validation-data/dambreak2d_buchner2002_P1_pysph.csv)"
 # The plateau's error is set by the measurement's scatter and the wall model's load noise, not by dp along this
 # ladder: it must stay within 25 %, not fall (5-11 % on every rung, without a trend).
 CONVERGES = False
@@ -68,7 +68,7 @@ PEAK_MEAN = 0.05  # s, the running mean the impact peak is taken over
 IMPACT_WINDOW = (2.0, 4.0)  # t sqrt(g/H) in which the impact peak is sought
 PEAK_TOLERANCE = 0.25
 PEAK_GATED_FROM = 0.01  # dp = H/60: the coarser rungs' wall overshoot is reported, not gated
-DATA = os.path.join(os.path.dirname(__file__), "..", "..", "..", "..", "shared", "validation-data",
+DATA = os.path.join(os.path.dirname(__file__), "..", "..", "..", "share", "validation-data",
                     "dambreak2d_buchner2002_P1_pysph.csv")
 
 

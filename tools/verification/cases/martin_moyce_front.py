@@ -27,7 +27,7 @@ not particular to this model:
     solution approaches the frictionless limit as dp falls and the lead grows towards Delta T = 0.24;
   - the initial state is right when dp divides a (the ladder's spacings): the column starts a wide and 2a high,
     hydrostatic, and its rear stays at 0.50-0.54 dp from the left wall through T = 1;
-  - Koshizuka & Oka's (1996) measurement of the same column (PySPH's db_exp_data.py, not in shared/validation-data)
+  - Koshizuka & Oka's (1996) measurement of the same column (PySPH's db_exp_data.py, not in share/validation-data)
     lies slower still (uncorrected 9.2 % | 11.4 %).
 The likely cause is the release in the experiment (the barrier's removal takes a few milliseconds). One check
 does not support it: fitted to each column size alone (a/50) the best shift is 0.235 for a = 1.125 in and 0.265
@@ -63,10 +63,10 @@ CONVERGES = False
 RELEASE_OFFSET = 0.175
 ERROR_LABEL = ("mean |Z_sim - Z_exp| / Z_exp over the measured points with T <= 3 (both column sizes), "
                f"simulated T + {RELEASE_OFFSET} on the experiment's clock")
-REFERENCE = "Martin & Moyce (1952) Fig. 3, n^2 = 2, a = 1.125 in and 2.25 in (shared/validation-data)"
+REFERENCE = "Martin & Moyce (1952) Fig. 3, n^2 = 2, a = 1.125 in and 2.25 in (share/validation-data)"
 A, G = 0.1, 9.81
 OPTIONS = {"density_diffusion": ["fourtakas", "molteni"]}
-DATA = os.path.join(os.path.dirname(__file__), "..", "..", "..", "..", "shared", "validation-data")
+DATA = os.path.join(os.path.dirname(__file__), "..", "..", "..", "share", "validation-data")
 
 
 def configure(scene, dp, option):
