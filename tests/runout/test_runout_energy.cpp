@@ -10,7 +10,6 @@
 #include <fstream>
 #include <numbers>
 
-#include "analytic.hpp"
 #include "talus/rheology.hpp"
 #include "follow_surface.hpp"
 #include "runout_world.hpp"

@@ -19,14 +19,27 @@ def set_dp(scene, dp, kinds=("fluid", "wall")):
     return scene
 
 
-def periodic_strip(scene, dp, particles=8):
-    """Shortens a periodic channel scene along x to `particles` spacings at every rung (the strip must span the
-    kernel support): the domain and every body's box."""
+def periodic_strip(scene, dp, particles=8, axis=0):
+    """Shortens a periodic channel scene along `axis` (0: x, 1: y) to `particles` spacings at every rung (the strip
+    must span the kernel support): the domain and every body's box."""
     length = particles * dp
-    scene["domain"]["max"][0] = length
+    scene["domain"]["max"][axis] = length
     for body in scene["bodies"]:
-        next(iter(body["shape"].values()))["max"][0] = length
+        next(iter(body["shape"].values()))["max"][axis] = length
     return scene
+
+
+def write_row_raster(path, box, dp, value_of_y):
+    """An ESRI ASCII raster (a release thickness) over a body's `box`, its cells centred on the lattice the box is
+    filled with (spacing dp), every row the value at its y."""
+    columns = int(round((box["max"][0] - box["min"][0]) / dp))
+    rows = int(round((box["max"][1] - box["min"][1]) / dp))
+    values = value_of_y(box["min"][1] + (np.arange(rows) + 0.5) * dp)
+    with open(path, "w") as f:
+        f.write(f"ncols {columns}\nnrows {rows}\nxllcorner {box['min'][0]!r}\nyllcorner {box['min'][1]!r}\n"
+                f"cellsize {dp!r}\nNODATA_value -9999\n")
+        for value in values[::-1]:  # north row first
+            f.write(" ".join([f"{value:.10g}"] * columns) + "\n")
 
 
 def row_averages(f, dp, *values):

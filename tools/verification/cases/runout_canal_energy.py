@@ -4,7 +4,8 @@ import os
 
 import numpy as np
 
-from verification.cases._util import frames, set_dp
+from verification.cases._util import frames, periodic_strip, set_dp, write_row_raster
+from verification.cases.thacker_canal import STRIP
 
 NAME = "runout_canal_energy"
 TITLE = "Frictionless lens swinging across a steep parabolic canal (banks to 28 degrees), four periods (depth-integrated SPH)"
@@ -22,28 +23,18 @@ EXPECTED_ORDER = 1.0
 CONVERGES = False
 G, K, H0, AMPLITUDE, RHO = 9.81, 0.01, 0.5, 20.0, 1000.0
 A_LENS = math.sqrt(H0 / K)
-STRIP = 12  # particles across the periodic strip: wider than the largest search radius (2 x 3 x 1.3 dp)
 
 
 def configure(scene, dp, option):
-    set_dp(scene, dp)
-    scene["domain"]["max"][0] = STRIP * dp
-    scene["bodies"][0]["shape"]["box"]["max"][0] = STRIP * dp
-    return scene
+    return periodic_strip(set_dp(scene, dp), dp, STRIP)
 
 
 def prepare(directory, scene, dp):
-    """thickness.asc: the lens h0 (1 - (y - y0)^2 / a^2) as slope-normal thickness, cells on the box's lattice."""
-    box = scene["bodies"][0]["shape"]["box"]
-    rows = int(round((box["max"][1] - box["min"][1]) / dp))
-    y = box["min"][1] + (np.arange(rows) + 0.5) * dp
-    d = (y + AMPLITUDE) / A_LENS
-    thickness = np.maximum(0.0, H0 * (1.0 - d * d)) / np.sqrt(1.0 + (2 * K * y) ** 2)
-    with open(os.path.join(directory, "thickness.asc"), "w") as f:
-        f.write(f"ncols {STRIP}\nnrows {rows}\nxllcorner {box['min'][0]!r}\nyllcorner {box['min'][1]!r}\n"
-                f"cellsize {dp!r}\nNODATA_value -9999\n")
-        for value in thickness[::-1]:  # north row first
-            f.write(" ".join([f"{value:.10g}"] * STRIP) + "\n")
+    """thickness.asc: the lens h0 (1 - (y - y0)^2 / a^2) as slope-normal thickness, at every particle."""
+    def thickness(y):
+        d = (y + AMPLITUDE) / A_LENS
+        return np.maximum(0.0, H0 * (1.0 - d * d)) / np.sqrt(1.0 + (2 * K * y) ** 2)
+    write_row_raster(os.path.join(directory, "thickness.asc"), scene["bodies"][0]["shape"]["box"], dp, thickness)
 
 
 def energies(f):

@@ -3,7 +3,7 @@ import math
 
 import numpy as np
 
-from verification.cases._util import frames, set_dp
+from verification.cases._util import frames, periodic_strip, set_dp
 
 NAME = "runout_slope_to_floor"
 TITLE = "Frictionless strip from a 30 degree slope onto a flat floor through a 60 m transition (depth-integrated SPH)"
@@ -21,16 +21,7 @@ CONVERGES = False  # the error is time-integration round-off far below the toler
 
 
 def configure(scene, dp, option):
-    set_dp(scene, dp)
-    return periodic_strip_y(scene, dp)
-
-
-def periodic_strip_y(scene, dp, particles=8):
-    """The strip across y: `particles` spacings wide at every rung (wider than the kernel support)."""
-    width = particles * dp
-    scene["domain"]["max"][1] = width
-    scene["bodies"][0]["shape"]["box"]["max"][1] = width
-    return scene
+    return periodic_strip(set_dp(scene, dp), dp, axis=1)  # the strip across y, 8 spacings wide
 
 
 def energies(f):

@@ -4,7 +4,7 @@ import os
 
 import numpy as np
 
-from verification.cases._util import frames, set_dp
+from verification.cases._util import frames, periodic_strip, set_dp, write_row_raster
 
 NAME = "thacker_canal"
 TITLE = "Thacker planar oscillation in a parabolic canal, three periods (depth-integrated SPH, frictionless)"
@@ -29,10 +29,8 @@ STRIP = 12  # particles across the periodic strip: wider than the largest search
 
 
 def configure(scene, dp, option):
-    set_dp(scene, dp)
-    scene["domain"]["max"][0] = STRIP * dp
+    periodic_strip(set_dp(scene, dp), dp, STRIP)
     box = scene["bodies"][0]["shape"]["box"]
-    box["max"][0] = STRIP * dp
     box["min"][1], box["max"][1] = -AMPLITUDE - A_LENS, -AMPLITUDE + A_LENS
     return scene
 
@@ -43,16 +41,9 @@ def exact(y, t):
 
 
 def prepare(directory, scene, dp):
-    """thickness.asc: cells centred on the lattice the box is filled with, slope-normal h cos(theta)."""
-    box = scene["bodies"][0]["shape"]["box"]
-    rows = int(round((box["max"][1] - box["min"][1]) / dp))
-    y = box["min"][1] + (np.arange(rows) + 0.5) * dp
-    thickness = exact(y, 0.0) / np.sqrt(1.0 + (2 * K * y) ** 2)
-    with open(os.path.join(directory, "thickness.asc"), "w") as f:
-        f.write(f"ncols {STRIP}\nnrows {rows}\nxllcorner {box['min'][0]!r}\nyllcorner {box['min'][1]!r}\n"
-                f"cellsize {dp!r}\nNODATA_value -9999\n")
-        for value in thickness[::-1]:  # north row first
-            f.write(" ".join([f"{value:.10g}"] * STRIP) + "\n")
+    """thickness.asc: the slope-normal thickness h cos(theta) of the lens at rest, at every particle."""
+    write_row_raster(os.path.join(directory, "thickness.asc"), scene["bodies"][0]["shape"]["box"], dp,
+                     lambda y: exact(y, 0.0) / np.sqrt(1.0 + (2 * K * y) ** 2))
 
 
 def frame_error(t, f):
