@@ -8,8 +8,10 @@
 //   shear   u_s <- rotate u_s into the tangent plane, u_s += v_t dt
 //           F_s = -k_s u_s - c_s v_t while |k_s u_s| <= F_n tan(phi) + c A   (stick)
 //           else |F_s| = F_n tan(phi) + c A along -u_s, u_s pulled back   (slip)
-//   bond    breaks when k_n pen < -sigma_t A (tension) or when the shear
-//           limit is reached; afterwards c = sigma_t = 0 for that contact.
+//   bond    breaks when k_n pen < -sigma_t A (tension), and when the shear
+//           limit is reached if the joint is brittle; afterwards
+//           c = sigma_t = 0 for that contact. A joint without shear softening
+//           keeps c while it slips (perfectly plastic Mohr-Coulomb).
 // The force acts on block b; energies: elastic energy in the springs, and the
 // dissipated work of slip and damping over the step.
 #pragma once
@@ -28,7 +30,18 @@ struct JointParameters {
   double damping_ratio = 0.0;
   double cohesion = 0.0;          // Pa
   double tensile_strength = 0.0;  // Pa
+  bool brittle = true;            // the bond breaks at the first shear slip
 };
+
+// Largest spring stiffness of one contact point (the stable step).
+inline double max_stiffness(const JointParameters& p) { return std::max(p.normal_stiffness, p.shear_stiffness); }
+
+// A contact present at the start is bonded when the joint has any strength
+// besides friction.
+inline std::uint8_t initial_state(const JointParameters& p) {
+  const bool bonded = p.cohesion > 0.0 || p.tensile_strength > 0.0;
+  return bonded ? dda::contact_bonded : static_cast<std::uint8_t>(dda::contact_open);
+}
 
 inline void joint_law(const JointParameters& p, const dda::ContactBatch& b, double dt) {
   using namespace talus::dda;
@@ -74,7 +87,7 @@ inline void joint_law(const JointParameters& p, const dda::ContactBatch& b, doub
 
     double limit = std::max(fn, 0.0) * p.tan_friction + (bonded ? p.cohesion * area : 0.0);
     double trial = ks * norm(us);
-    if (bonded && trial > limit) {  // shear failure of the bond
+    if (bonded && p.brittle && trial > limit) {  // shear failure of the bond
       bonded = false;
       limit = std::max(fn, 0.0) * p.tan_friction;
     }

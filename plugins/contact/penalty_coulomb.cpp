@@ -32,7 +32,7 @@ ParamSet PenaltyCoulomb::describe() {
 
 PenaltyCoulomb::PenaltyCoulomb(const ParamValues& v) : p_(read_springs(v)) {}
 
-double PenaltyCoulomb::max_stiffness() const { return std::max(p_.normal_stiffness, p_.shear_stiffness); }
+double PenaltyCoulomb::max_stiffness() const { return contact::max_stiffness(p_); }
 
 void PenaltyCoulomb::compute(const dda::ContactBatch& batch, double dt) const { joint_law(p_, batch, dt); }
 

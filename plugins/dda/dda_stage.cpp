@@ -1,7 +1,5 @@
 #include "dda_stage.hpp"
 
-#include <cstring>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +9,7 @@
 #include <omp.h>
 
 #include "block_shape.hpp"
+#include "state_archive.hpp"
 #include "talus/error.hpp"
 #include "talus/world.hpp"
 
@@ -63,6 +62,8 @@ Quaternion from_columns(const Vec3& c0, const Vec3& c1, const Vec3& c2) {
   return normalised(q);
 }
 
+double sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
+
 std::string format(const char* fmt, double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, fmt, v);
@@ -110,6 +111,9 @@ void DdaStage::setup(World& world) {
 }
 
 void DdaStage::build_blocks(World& world) {
+  if (world.blocks)
+    params_.fail("", "the block system is already built by another stage (a dda or strength_reduction stage "
+                     "earlier in the pipeline); list only one");
   world.blocks = std::make_unique<BlockSet>();
   energy_ = &world.blocks->energy;
   BlockSet& b = *world.blocks;
@@ -312,13 +316,26 @@ void DdaStage::contact_forces(BlockSet& b, double h) {
 void DdaStage::integrate(World& world, BlockSet& b, double t, double h) {
   const Vec3 g = world.gravity;
   const double kick = started_ ? h : 0.5 * h;  // leapfrog start: v(1/2) = v(0) + dt/2 a(0)
-  double work = 0.0, kinetic = 0.0, potential = 0.0;
+  double work = 0.0, kinetic = 0.0, potential = 0.0, damped = 0.0;
+  double unbalanced = 0.0, weight = 0.0;
+  std::size_t dynamic_count = 0;
   const std::size_t n = b.size();
   for (std::size_t i = 0; i < n; ++i) {
     if (!dynamic_[i]) continue;
-    const Vec3 force = b.mass[i] * g + b.external_force[i] + force_[i];
-    const Vec3 torque = b.external_torque[i] + torque_[i];
+    Vec3 force = b.mass[i] * g + b.external_force[i] + force_[i];
+    Vec3 torque = b.external_torque[i] + torque_[i];
     const Vec3 v_old = b.velocity[i], w_old = b.angular_velocity[i], l_old = momentum_[i];
+    unbalanced = std::max({unbalanced, norm(force), norm(torque) / b.shape[i].radius});
+    weight += b.mass[i] * norm(g);
+    ++dynamic_count;
+    Vec3 damping_force{}, damping_torque{};
+    if (local_damping_ > 0.0)
+      for (int k = 0; k < 3; ++k) {
+        damping_force[k] = -local_damping_ * std::abs(force[k]) * sign(v_old[k]);
+        damping_torque[k] = -local_damping_ * std::abs(torque[k]) * sign(w_old[k]);
+      }
+    force += damping_force;
+    torque += damping_torque;
     b.velocity[i] += (kick * inverse_mass_[i]) * force;
     momentum_[i] += kick * torque;
     // Energies at the time of the forces, t: the leapfrog's synchronous
@@ -341,6 +358,7 @@ void DdaStage::integrate(World& world, BlockSet& b, double t, double h) {
     const Vec3 l_before = started_ ? l_old : 2.0 * l_old - momentum_[i];
     kinetic += 0.25 * (dot(w_before, momentum_[i]) + dot(w, l_before));
     work += dot(b.external_torque[i], 0.5 * (w_before + w)) * h;
+    damped -= (dot(damping_force, 0.5 * (v_before + b.velocity[i])) + dot(damping_torque, 0.5 * (w_before + w))) * h;
     b.position[i] += h * b.velocity[i];
     b.orientation[i] = normalised(from_rotation_vector(h * w) * q);
     if (!is_finite(b.position[i]) || !is_finite(w))
@@ -355,8 +373,10 @@ void DdaStage::integrate(World& world, BlockSet& b, double t, double h) {
       move_kinematic(b, t + h);
     }
   b.energy.external_work += work;
+  b.energy.dissipated += damped;
   b.energy.kinetic = kinetic;
   b.energy.potential = potential;
+  unbalanced_ratio_ = weight > 0.0 ? unbalanced / (weight / dynamic_count) : 0.0;
   started_ = true;
 }
 
@@ -427,6 +447,18 @@ void DdaStage::step(World& world, BlockSet& b, double t, double h) {
   ++timing_.steps;
 }
 
+void DdaStage::relax_step(World& world) {
+  if (world.blocks && world.blocks->size() > 0) step(world, *world.blocks, world.time, dt_stable_);
+}
+
+void DdaStage::stop_blocks(World& world) {
+  BlockSet& b = *world.blocks;
+  std::fill(b.velocity.begin(), b.velocity.end(), Vec3{});
+  std::fill(b.angular_velocity.begin(), b.angular_velocity.end(), Vec3{});
+  std::fill(momentum_.begin(), momentum_.end(), Vec3{});
+  started_ = false;
+}
+
 double DdaStage::stable_time_step(const World& /*world*/) {
   return subcycle_ ? std::numeric_limits<double>::infinity() : dt_stable_;
 }
@@ -475,37 +507,6 @@ namespace talus::dda {
 
 namespace {
 
-// Flat binary (same build, same machine: checkpoints are not an exchange format).
-struct StateWriter {
-  std::string out;
-  template <class T>
-  void value(const T& v) { out.append(reinterpret_cast<const char*>(&v), sizeof v); }
-  template <class T>
-  void vector(const std::vector<T>& v) {
-    value<std::uint64_t>(v.size());
-    out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
-  }
-};
-
-struct StateReader {
-  std::string_view in;
-  template <class T>
-  void value(T& v) {
-    if (in.size() < sizeof v) throw InputError("error: checkpoint: the dda stage's state is truncated");
-    std::memcpy(&v, in.data(), sizeof v);
-    in.remove_prefix(sizeof v);
-  }
-  template <class T>
-  void vector(std::vector<T>& v) {
-    std::uint64_t n = 0;
-    value(n);
-    if (in.size() < n * sizeof(T)) throw InputError("error: checkpoint: the dda stage's state is truncated");
-    v.resize(n);
-    std::memcpy(v.data(), in.data(), n * sizeof(T));
-    in.remove_prefix(n * sizeof(T));
-  }
-};
-
 // ContactKey has padding: its fields go one by one so that equal states
 // give equal bytes (restarts are compared bit for bit).
 void archive_keys(StateWriter& w, const std::vector<ContactKey>& keys) {
@@ -521,7 +522,7 @@ void archive_keys(StateWriter& w, const std::vector<ContactKey>& keys) {
 void archive_keys(StateReader& r, std::vector<ContactKey>& keys) {
   std::uint64_t n = 0;
   r.value(n);
-  if (r.in.size() < n * 20) throw InputError("error: checkpoint: the dda stage's state is truncated");
+  if (n > r.in.size() / 20) r.truncated();
   keys.resize(n);
   for (auto& k : keys) {
     r.value(k.model);
@@ -577,7 +578,7 @@ void DdaStage::load_state(std::string_view bytes) {
                      std::to_string(momentum_.size()));
   momentum_ = std::move(momentum);
   archive_contacts(r, contacts_);
-  if (!r.in.empty()) throw InputError("error: checkpoint: the dda stage's state has trailing bytes");
+  r.finish();
 }
 
 }  // namespace talus::dda

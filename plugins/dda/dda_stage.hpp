@@ -54,6 +54,21 @@ class DdaStage final : public Stage {
   // (tests). Must be called before setup; the model must outlive the stage.
   void set_contact_model(int body, ContactModel* model);
 
+  // Quasi-static use (strength reduction): local non-viscous damping (3DEC,
+  // Cundall 1987) removes alpha |F_k| sgn(v_k) from every component of each
+  // dynamic block's force and torque; 0 (the default) is undamped dynamics.
+  void set_local_damping(double alpha) { local_damping_ = alpha; }
+  // One stable step from world.time (the host clock is not advanced).
+  void relax_step(World& world);
+  // Sets every block's velocity and angular momentum to zero and restarts the
+  // leapfrog with a half kick (a trial restored from a saved state).
+  void stop_blocks(World& world);
+  // Largest unbalanced force or torque/radius of a dynamic block at the last
+  // step, over the mean weight of the dynamic blocks (3DEC's ratio).
+  double unbalanced_ratio() const { return unbalanced_ratio_; }
+  double contact_margin() const { return margin_; }
+  const std::vector<ContactModel*>& models() const { return models_; }
+
   // Introspection for tests and benchmarks.
   double own_time_step() const { return dt_stable_; }
   int last_substeps() const { return last_substeps_; }
@@ -80,6 +95,8 @@ class DdaStage final : public Stage {
   double safety_ = 0.5;
   bool subcycle_ = false;
   double margin_ = -1.0;  // < 0: 1% of the smallest block radius
+  double local_damping_ = 0.0;
+  double unbalanced_ratio_ = 0.0;
 
   // Contact models: one per block (index into models_), and the distinct ones.
   std::vector<std::pair<int, ContactModel*>> overrides_;
