@@ -15,10 +15,12 @@ class FactorSearch {
   enum class Phase : std::uint8_t { lower, upper, bisect, done, fails_at_lower, holds_at_upper };
 
   FactorSearch() = default;
-  FactorSearch(double lo, double hi, double tolerance) : lo_(lo), hi_(hi), tolerance_(tolerance) {}
+  FactorSearch(double lo, double hi, double tolerance)
+      : lo_(lo), hi_(hi), tolerance_(tolerance),
+        max_trials_(2 + static_cast<int>(std::ceil(std::log2((hi - lo) / tolerance) - 1e-12))) {}
 
   // Trials the search takes at most: both ends, then the bisections.
-  int max_trials() const { return 2 + static_cast<int>(std::ceil(std::log2((hi_ - lo_) / tolerance_) - 1e-12)); }
+  int max_trials() const { return max_trials_; }
 
   double next() const {
     if (phase_ == Phase::lower) return lo_;
@@ -49,6 +51,7 @@ class FactorSearch {
 
  private:
   double lo_ = 0.5, hi_ = 4.0, tolerance_ = 0.005;
+  int max_trials_ = 12;
   Phase phase_ = Phase::lower;
 };
 

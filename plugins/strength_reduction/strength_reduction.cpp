@@ -272,9 +272,12 @@ TrialResult StrengthReduction::relax(World& world, double factor) {
       break;
     }
   }
+  // The gravity-loaded state is where displacements count from.
+  r.monitors.assign(monitors_.size(), Vec3{});
   if (loaded_) {
     r.displacement = displacement(b);
-    for (const Monitor& m : monitors_) r.monitors.push_back(b.to_world(m.block, m.body_point) - m.start);
+    for (std::size_t k = 0; k < monitors_.size(); ++k)
+      r.monitors[k] = b.to_world(monitors_[k].block, monitors_[k].body_point) - monitors_[k].start;
   }
   const dda::ContactSet& c = dda_->contacts();
   r.contacts = c.size();
@@ -330,6 +333,7 @@ void StrengthReduction::advance(World& world, double /*dt*/) {
 
 StagePlan StrengthReduction::plan(const World& world) const {
   StagePlan p = dda_->plan(world);
+  p.notes.resize(std::min<std::size_t>(p.notes.size(), 1));  // the block count; the stage sets the host step itself
   p.passes.insert(p.passes.begin(), "per trial F: restore the gravity-loaded state, joints at c/F and tan(phi)/F");
   p.passes.push_back("local damping " + number("%g", damping_) + "; equilibrium at unbalanced-force ratio < " +
                      number("%g", ratio_limit_) + ", at most " + std::to_string(max_steps_) + " steps");

@@ -30,12 +30,12 @@ std::string outcome(const TrialResult& t) {
 std::string csv_header(std::size_t monitors) {
   std::string s =
       "trial,factor,outcome,steps,ratio,no_equilibrium,displacement_limit,displacement_growing,slip_path,"
-      "displacement_m,contacts,open,closed,slip,bonded,released_blocks,released_mass_fraction,dissipated_J,wall_s";
+      "displacement_m,contacts,open,closed,slip,bonded,released_blocks,released_mass_fraction,dissipated_J";
   for (std::size_t k = 0; k < monitors; ++k) {
     const std::string m = "monitor" + std::to_string(k);
     s += "," + m + "_dx_m," + m + "_dy_m," + m + "_dz_m," + m + "_d_m";
   }
-  return s + "\n";
+  return s + ",wall_s\n";
 }
 
 std::string csv_row(std::size_t trial, const TrialResult& t) {
@@ -45,9 +45,9 @@ std::string csv_row(std::size_t trial, const TrialResult& t) {
   s += "," + number(t.displacement);
   for (std::uint64_t c : {t.contacts, t.open, t.stick, t.slip, t.bonded, t.released_blocks})
     s += "," + std::to_string(c);
-  s += "," + number(t.released_mass) + "," + number(t.dissipated) + "," + number(t.wall_seconds);
+  s += "," + number(t.released_mass) + "," + number(t.dissipated);
   for (const Vec3& d : t.monitors) s += "," + number(d.x) + "," + number(d.y) + "," + number(d.z) + "," + number(norm(d));
-  return s + "\n";
+  return s + "," + number(t.wall_seconds) + "\n";
 }
 
 }  // namespace talus::strength_reduction

@@ -144,3 +144,28 @@ TEST(DdaContactModels, MohrCoulombBondsBreakInTensionAndShear) {
   EXPECT_EQ(s.state & contact_state_mask, contact_slip);
   EXPECT_NEAR(s.force.x, -1000.0 * std::tan(30.0 * M_PI / 180.0), 1e-9);
 }
+
+TEST(DdaContactModels, PerfectlyPlasticJointsKeepTheirCohesionWhileSlipping) {
+  const auto p = params_from_json(contact::MohrCoulomb::describe(),
+                                  R"({"normal_stiffness": 1e6, "friction_angle": 30, "damping_ratio": 0,
+                                      "cohesion": 1e4, "shear_softening": "none"})");
+  contact::MohrCoulomb m(p);
+  // F_n = 1000 N, capacity c A + F_n tan(phi) = 100 + 577 N: 700 N slips at the full capacity, still bonded.
+  One s;
+  s.area = 0.01;
+  s.state = contact_bonded;
+  s.gap = -1e-3;
+  s.shear = {700.0 / 4e5, 0, 0};
+  const double capacity = 100.0 + 1000.0 * std::tan(30.0 * M_PI / 180.0);
+  for (int step = 0; step < 3; ++step) {
+    m.compute(s.batch(), 1e-3);
+    EXPECT_TRUE(s.state & contact_bonded);
+    EXPECT_EQ(s.state & contact_state_mask, contact_slip);
+    EXPECT_NEAR(s.force.x, -capacity, 1e-9);
+    s.shear.x *= 1.2;  // keeps being dragged
+  }
+  // A tensile failure still breaks the bond (no tensile strength here: any tension).
+  s.gap = 1e-5;
+  m.compute(s.batch(), 1e-3);
+  EXPECT_FALSE(s.state & contact_bonded);
+}

@@ -326,3 +326,20 @@ TEST(DdaStage, SetupErrorsNameTheBlock) {
   flat.add_block(block("rock", box({0, 0, 0}, {1, 1, 1})), contact(30));
   EXPECT_THROW(flat.start(), InputError);
 }
+
+TEST(DdaStage, LocalDampingBringsABlockToRestWithItsEnergyBalanced) {
+  // Contact damping off: only the local (non-viscous) damping takes the drop energy out.
+  BlockScene s;
+  s.add_block(block("floor", box({-2, -2, -0.5}, {2, 2, 0}), ", \"fixed\": true"), contact(30, 0.0));
+  s.add_block(block("rock", box({-0.1, -0.1, 0.3}, {0.1, 0.1, 0.5})), contact(30, 0.0));
+  DdaStage& stage = s.start();
+  stage.set_local_damping(0.8);
+  const auto& e = s.blocks().energy;
+  const double e0 = e.kinetic + e.potential + e.strain;
+  s.run_until(1.0);
+  const double mechanical = e.kinetic + e.potential + e.strain;
+  EXPECT_NEAR(e0 - mechanical, drop_energy, 0.01 * drop_energy);
+  EXPECT_NEAR((mechanical + e.dissipated - e0) / drop_energy, 0.0, 0.03) << "balance";
+  EXPECT_LT(stage.unbalanced_ratio(), 1e-6);  // static equilibrium: the springs carry the weight
+  EXPECT_NEAR(s.blocks().position[1].z, 0.1, 1e-4);
+}

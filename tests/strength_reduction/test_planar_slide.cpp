@@ -1,0 +1,100 @@
+// Strength reduction on the seed's planar slide through `talus run`: the safety
+// factor against the closed form for three slab thicknesses, cohesion only,
+// friction only and a softer joint (gate 1 %, the issue's); the per-trial
+// table; and a restart that continues the search exactly.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <sstream>
+#include <vector>
+
+#include "planar_slide_scene.hpp"
+#include "process.hpp"
+
+namespace fs = std::filesystem;
+using namespace talus::test;
+
+namespace {
+
+void expect_closed_form(const SlabJoint& joint, const std::string& name) {
+  const FactorRun r = run_scene(planar_slide(joint), name);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const double exact = closed_form(joint);
+  std::printf("%s: F_s = %.4f, closed form %.4f (%+.3f %%), bracket [%.4f, %.4f]\n", name.c_str(), r.safety_factor,
+              exact, 100.0 * (r.safety_factor / exact - 1.0), r.holds, r.fails);
+  EXPECT_NEAR(r.safety_factor / exact, 1.0, 0.01);
+  EXPECT_LE(r.holds, exact);  // the joint model adds no error the bisection can see
+  EXPECT_GE(r.fails, exact);
+}
+
+// Rows of a CSV without the last `drop` columns.
+std::vector<std::string> rows(const std::string& path, int drop) {
+  std::istringstream in(read_file(path));
+  std::vector<std::string> out;
+  for (std::string line; std::getline(in, line);) {
+    for (int k = 0; k < drop; ++k) line = line.substr(0, line.rfind(','));
+    out.push_back(line);
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST(PlanarSlide, SafetyFactorMatchesTheClosedFormForThreeThicknesses) {
+  expect_closed_form({.thickness = 4.330127018922193}, "thin");
+  expect_closed_form({.thickness = 8.660254037844386}, "seed");
+  expect_closed_form({.thickness = 17.32050807568877}, "thick");
+}
+
+TEST(PlanarSlide, CohesionOnlyAndFrictionOnlyMatchTheirClosedForms) {
+  expect_closed_form({.thickness = 1.0, .friction = 0.0}, "cohesion_only");      // F = 1.0401
+  expect_closed_form({.cohesion = 0.0, .friction = 40.0}, "friction_only");      // F = tan 40 / tan 30 = 1.4534
+  expect_closed_form({.stiffness = 1e9}, "softer_joint");
+}
+
+TEST(PlanarSlide, TheTrialTableShowsHoldingJointsStickingAndFailingOnesSlipping) {
+  const FactorRun r = run_scene(planar_slide({}), "table");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto table = rows(r.directory + "/strength_reduction.csv", 0);
+  ASSERT_GE(table.size(), 3u);
+  EXPECT_EQ(table[0].rfind("trial,factor,outcome,steps,ratio,", 0), 0u) << table[0];
+  EXPECT_EQ(table[1].rfind("0,elastic,stable,", 0), 0u) << table[1];
+  int stable = 0, failed = 0;
+  for (std::size_t k = 2; k < table.size(); ++k) {
+    std::vector<std::string> cell;
+    std::istringstream line(table[k]);
+    for (std::string c; std::getline(line, c, ',');) cell.push_back(c);
+    ASSERT_GE(cell.size(), 15u);
+    // contacts, open, closed, slip are columns 10..13; the slab rests on 4 contact points.
+    EXPECT_EQ(cell[10], "4");
+    if (cell[2] == "stable") {
+      ++stable;
+      EXPECT_EQ(cell[13], "0") << table[k];
+    } else {
+      ++failed;
+      EXPECT_EQ(cell[13], "4") << table[k];
+      EXPECT_EQ(cell[8], "1") << "slip path " << table[k];
+    }
+  }
+  EXPECT_GT(stable, 1);
+  EXPECT_GT(failed, 1);
+  EXPECT_TRUE(fs::exists(r.directory + "/strength_reduction_limit_state.h5"));
+}
+
+TEST(PlanarSlide, ARestartContinuesTheSearchExactly) {
+  nlohmann::json scene = planar_slide({});
+  scene["checkpoint"] = {{"every", 0.3}, {"keep", 5}};
+  const FactorRun whole = run_scene(scene, "restart_whole");
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+  std::vector<fs::path> checkpoints;
+  for (const auto& e : fs::directory_iterator(whole.directory))
+    if (e.path().extension() == ".checkpoint") checkpoints.push_back(e.path());
+  std::sort(checkpoints.begin(), checkpoints.end());
+  ASSERT_GE(checkpoints.size(), 2u);
+  const FactorRun resumed = run_scene(scene, "restart_resumed", "--restart " + checkpoints.front().string());
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_EQ(resumed.safety_factor, whole.safety_factor);
+  // Every column but the wall time is the same.
+  EXPECT_EQ(rows(resumed.directory + "/strength_reduction.csv", 1), rows(whole.directory + "/strength_reduction.csv", 1));
+}
