@@ -6,7 +6,9 @@
 // plug that bounds the viscous time step (hbp_formula.hpp, cap_viscosity).
 // Depth-integrated flow: basal shear tau_b = tau_y / eta from the infinite
 // landslide relation (seed pfe-ie §2.2.2 eqs 10-13), solved exactly by
-// default or with Pastor's quadratic (`basal: pastor`), see bingham_basal.hpp.
+// default or with Pastor's quadratic (`basal: pastor`), see bingham_basal.hpp;
+// with basal_friction_angle phi the frictional Bingham law
+// tau_b + rho g_n h tan(phi) (Coulomb friction on the basal normal stress).
 #pragma once
 
 #include "talus/rheology.hpp"
@@ -28,6 +30,7 @@ class Bingham final : public Rheology {
  private:
   double yield_stress_, viscosity_, regularisation_, max_viscosity_;
   bool pastor_;
+  double tan_friction_;  // basal Coulomb term (depth-integrated only)
 };
 
 }  // namespace talus::rheology

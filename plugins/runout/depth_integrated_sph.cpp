@@ -25,6 +25,16 @@ std::string format(const char* fmt, double a, double b = 0.0, double c = 0.0, do
   return buf;
 }
 
+// The value of the raster cell holding plan point p (a raster is piecewise
+// constant); `outside` beyond its cells or on a no-data cell.
+double cell_value(const Grid& g, const Vec3& p, double outside) {
+  const double fx = (p.x - g.x0) / g.cell, fy = (p.y - g.y0) / g.cell;
+  if (!(fx >= -0.5 && fy >= -0.5 && fx < g.ncols - 0.5 && fy < g.nrows - 0.5)) return outside;
+  const int c = std::clamp(static_cast<int>(std::lround(fx)), 0, g.ncols - 1);
+  const int r = std::clamp(static_cast<int>(std::lround(fy)), 0, g.nrows - 1);
+  return g.at(c, r) != g.nodata ? g.at(c, r) : outside;
+}
+
 }  // namespace
 
 ParamSet DepthIntegratedSph::describe() {
@@ -34,6 +44,13 @@ ParamSet DepthIntegratedSph::describe() {
       .doc("slope-normal thickness of every fluid body's particles at the start (volume = thickness dp^2 / cos)");
   p.path("thickness_raster").optional()
       .doc("ESRI ASCII raster of the slope-normal release thickness (cell under each particle); <= 0, no-data or outside: dropped");
+  p.choice("thickness_measured", {"normal", "vertical"}).default_value("normal")
+      .doc("what release_thickness and thickness_raster give: the slope-normal thickness, or the vertical one (a "
+           "column over the cell, as the strength-reduction hand-off writes it)");
+  p.path("basal_shear_raster").optional()
+      .doc("ESRI ASCII raster of the basal shear stress (Pa) each particle resists with while it has not moved yet "
+           "(the limit-state contact shear from strength reduction, seed eq. 30): it sets which part of the mass "
+           "starts first; once a particle moves only its rheology's basal law acts");
   p.real("cfl").greater_than(0.0).max(1.0).default_value(0.2)
       .doc("Courant number of dt = cfl l / (sqrt(g h) + |v|)");
   p.boolean("variable_smoothing").default_value(true)
@@ -121,9 +138,15 @@ void DepthIntegratedSph::setup(World& world) {
   s.require({"basal_shear", FieldType::scalar, "Pa", true, false});
 
   // Release: thickness per particle, dropping those with none.
-  Grid thickness;
+  Grid thickness, resistance;
   const bool from_raster = params_.has("thickness_raster");
   if (from_raster) thickness = read_esri_ascii(params_.string("thickness_raster"), true);
+  const bool vertical = params_.string("thickness_measured") == "vertical";
+  const bool resists = params_.has("basal_shear_raster");
+  if (resists) {
+    resistance = read_esri_ascii(params_.string("basal_shear_raster"), true);
+    s.require({"initial_basal_shear", FieldType::scalar, "Pa", true, true});
+  }
   {
     auto pos = s.position();
     auto body = s.body();
@@ -135,16 +158,7 @@ void DepthIntegratedSph::setup(World& world) {
       if (mat[i] < 0 || mat[i] >= static_cast<int>(world.materials.size()))
         throw InputError(where + "fluid particle " + std::to_string(i) + " has no material");
       double t = params_.has("release_thickness") ? params_.real("release_thickness") : 0.0;
-      if (from_raster) {  // the value of the cell holding the particle (a raster is piecewise constant)
-        const double fx = (pos[i].x - thickness.x0) / thickness.cell, fy = (pos[i].y - thickness.y0) / thickness.cell;
-        const bool inside = fx >= -0.5 && fy >= -0.5 && fx < thickness.ncols - 0.5 && fy < thickness.nrows - 0.5;
-        t = 0.0;
-        if (inside) {
-          const int c = std::clamp(static_cast<int>(std::lround(fx)), 0, thickness.ncols - 1);
-          const int r = std::clamp(static_cast<int>(std::lround(fy)), 0, thickness.nrows - 1);
-          if (thickness.at(c, r) != thickness.nodata) t = thickness.at(c, r);
-        }
-      }
+      if (from_raster) t = cell_value(thickness, pos[i], 0.0);
       if (!(t > 0.0)) {
         drop[i] = 1;
         ++dropped;
@@ -164,7 +178,9 @@ void DepthIntegratedSph::setup(World& world) {
       const double dp = body[i] >= 0 && body[i] < static_cast<int>(world.bodies.size()) && world.bodies[body[i]].dp > 0
                             ? world.bodies[body[i]].dp
                             : world.dp;
-      vol[i] = t * std::sqrt(1.0 + gz.x * gz.x + gz.y * gz.y) * dp * dp;  // vertical column over dp^2
+      // A vertical column over dp^2.
+      vol[i] = (vertical ? t : t * std::sqrt(1.0 + gz.x * gz.x + gz.y * gz.y)) * dp * dp;
+      if (resists) s.scalar("initial_basal_shear")[i] = std::max(cell_value(resistance, pos[i], 0.0), 0.0);
     }
     if (dropped) {
       s.remove_if(drop);
@@ -446,6 +462,11 @@ void DepthIntegratedSph::advance(World& world, double dt) {
     const Rheology* rh = world.materials[m].rheology;
     if (rh) rh->basal_shear(world.material_particles(m), in, tau_.data());
   }
+  // A particle that has not moved yet resists with its limit-state shear.
+  const bool resists = s.has("initial_basal_shear");
+  std::span<double> initial = resists ? s.scalar("initial_basal_shear") : std::span<double>{};
+  if (resists)
+    for (std::size_t i = 0; i < n; ++i) tau_[i] = std::max(tau_[i], initial[i]);
 
   // 6. Friction acts against the motion and at most stops it within the step
   //    (implicit: a particle whose speed friction can absorb this step stops).
@@ -481,6 +502,7 @@ void DepthIntegratedSph::advance(World& world, double dt) {
     }
     speed_[i] = sp * factor;
     shear[i] = tau_[i];
+    if (resists && factor > 0.0) initial[i] = 0.0;  // it moves: from now on the basal law alone
     trial_[i] = factor > 0.0 ? wrap(pos[i] + dt * vel[i]) : pos[i];
   }
 

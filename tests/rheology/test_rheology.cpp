@@ -87,6 +87,16 @@ TEST(Bingham, ExactBasalShearFromTheInfiniteLandslideRelation) {
   EXPECT_NEAR(basal(n, 2.0, 1.0, 1500.0, 9.81), 15.0, 1e-12);
 }
 
+TEST(Bingham, BasalFrictionAngleAddsCoulombFrictionOnTheNormalStress) {
+  // tau_b = tau_y / eta + rho g_n h tan(phi): at rest 100 + 1500 * 9 * 2 * tan 30, and the same Coulomb term
+  // on top of the moving Bingham value.
+  const auto b = make<Bingham>(R"({"yield_stress": 100, "viscosity": 10, "basal_friction_angle": 30})");
+  const double coulomb = 1500.0 * 9.0 * 2.0 * std::tan(M_PI / 6.0);
+  EXPECT_NEAR(basal(b, 2.0, 0.0, 1500.0, 9.0), 100.0 + coulomb, 1e-9);
+  const auto plain = make<Bingham>(R"({"yield_stress": 100, "viscosity": 10})");
+  EXPECT_NEAR(basal(b, 2.0, 1.7, 1500.0, 9.0), basal(plain, 2.0, 1.7, 1500.0, 9.0) + coulomb, 1e-9);
+}
+
 TEST(Bingham, ExactRootSolvesTheCubicOverTheWholeRange) {
   for (double la = -6.0; la <= 6.0; la += 0.01) {
     const double a = std::pow(10.0, la);
