@@ -4,6 +4,7 @@
 
 #include "file_io.hpp"
 #include "h5_util.hpp"
+#include "slip_path.hpp"
 
 namespace talus::strength_reduction {
 namespace {
@@ -44,6 +45,8 @@ void write_group(hid_t file, const char* name, const LimitState& s, const std::s
   for (const Quaternion& o : s.orientation) q.insert(q.end(), {o.w, o.x, o.y, o.z});
   h5::write_dataset(g, "block_orientation", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, q.data(), s.orientation.size(), 4,
                     path);
+  h5::write_dataset(g, "block_released", H5T_STD_U8LE, H5T_NATIVE_UINT8, s.released.data(), s.released.size(), 0,
+                    path);
 }
 
 }  // namespace
@@ -72,6 +75,8 @@ LimitState capture(const TrialResult& trial, const dda::ContactSet& c, const Blo
   s.position = blocks.position;
   s.orientation = blocks.orientation;
   for (std::size_t i = 0; i < blocks.size(); ++i) s.displacement.push_back(blocks.position[i] - start_position[i]);
+  s.released.assign(blocks.size(), 0);
+  for (const std::uint32_t i : released_blocks(blocks, c).blocks) s.released[i] = 1;
   return s;
 }
 

@@ -26,6 +26,7 @@ struct LimitState {
   std::vector<std::uint32_t> block_a, block_b;
   std::vector<Vec3> position, displacement;
   std::vector<Quaternion> orientation;
+  std::vector<std::uint8_t> released;  // per block: held by open or slipping joints only
 };
 
 LimitState capture(const TrialResult& trial, const dda::ContactSet& contacts, const BlockSet& blocks,

@@ -6,7 +6,9 @@
 #include <cstdio>
 #include <limits>
 
+#include "esri_ascii.hpp"
 #include "file_io.hpp"
+#include "handoff.hpp"
 #include "slip_path.hpp"
 #include "state_archive.hpp"
 #include "talus/blocks.hpp"
@@ -79,6 +81,7 @@ void archive_limit_state(Archive& a, LimitState& s) {
   a.vector(s.position);
   a.vector(s.displacement);
   a.vector(s.orientation);
+  a.vector(s.released);
 }
 
 }  // namespace
@@ -110,6 +113,20 @@ ParamSet StrengthReduction::describe() {
   p.vector_list("monitors").unit("m").optional()
       .doc("points inside free blocks whose displacement is reported for every trial (the seed's monitoring "
            "points)");
+  ParamSet handoff{"handoff", "rasters and a run-out scene for the mass that fails"};
+  handoff.path("runout_scene")
+      .doc("a depth_integrated_sph scene (its kernel, Bingham material, time and outputs) that the hand-off fills "
+           "with the failed mass, the terrain and the reduced strength and writes as FILE_runout.json");
+  handoff.path("dem").optional()
+      .doc("ESRI ASCII DEM of the slope around the blocks: the rasters take its grid and its elevations where no "
+           "block is");
+  handoff.real("cell").unit("m").greater_than(0.0).optional()
+      .doc("raster cell, and the run-out particle spacing, without a dem (with one: the DEM's cell)");
+  handoff.real("margin").unit("m").min(0.0).default_value(0.0)
+      .doc("without a dem: the rasters cover the blocks' plan extent plus this on every side");
+  p.object("handoff", handoff).optional()
+      .doc("after the search: terrain (blocks that hold, then the DEM), vertical thickness of the released blocks, "
+           "limit-state basal shear by inverse distance (seed eq. 30), and a run-out scene reading them");
   p.string("file").default_value("strength_reduction")
       .doc("name of the per-trial table FILE.csv and the limit state FILE_limit_state.h5 in the output folder");
   check_output_name(p, "file");
@@ -136,6 +153,12 @@ StrengthReduction::StrengthReduction(const ParamValues& v)
   window_ = v.integer("window");
   if (v.has("displacement_limit")) displacement_limit_ = v.real("displacement_limit");
   file_ = v.string("file");
+  if (v.has("handoff")) {
+    const ParamValues& h = v.object("handoff");
+    handoff_ = true;
+    handoff_margin_ = h.real("margin");
+    if (h.has("cell")) handoff_cell_ = h.real("cell");
+  }
   const auto& b = v.reals("bracket");
   search_ = FactorSearch(b[0], b[1], tolerance_);
   trial_budget_ = 1 + search_.max_trials();
@@ -153,6 +176,22 @@ void StrengthReduction::setup(World& world) {
     joints_.push_back(std::make_unique<ReducedJoint>(body.params.model_name("contact"),
                                                      body.params.model_params("contact"), body.params));
     dda_->set_contact_model(static_cast<int>(bi), joints_.back().get());
+    joint_of_body_.resize(world.bodies.size(), nullptr);
+    joint_of_body_[bi] = joints_.back().get();
+  }
+  if (handoff_) {
+    const ParamValues& h = params_.object("handoff");
+    if (h.has("dem")) {
+      dem_ = runout::read_esri_ascii(h.string("dem"));
+      has_dem_ = true;
+      if (handoff_cell_ > 0.0 && std::abs(handoff_cell_ - dem_.cell) > 1e-9 * dem_.cell)
+        h.fail("cell", "the rasters take the DEM's cell " + number("%g", dem_.cell) + " m; leave out cell or "
+                       "give the same");
+      handoff_cell_ = dem_.cell;
+    } else if (!(handoff_cell_ > 0.0)) {
+      h.fail("cell", "without a dem the hand-off needs a raster cell (m)");
+    }
+    runout_template_ = read_runout_template(h.string("runout_scene"));
   }
   dda_->setup(world);
   dda_->set_local_damping(damping_);
@@ -448,7 +487,64 @@ std::vector<std::string> StrengthReduction::finish(World& world, const std::stri
     lines.push_back("strength_reduction: the run ended before the search did (" + cost + "); F_s not found");
   }
   lines.push_back("strength_reduction: trials in " + csv + ", limit state in " + h5);
+  if (handoff_ && search_.phase() == Phase::done)
+    for (auto& line : write_handoff(world, output_directory)) lines.push_back(std::move(line));
   return lines;
+}
+
+std::vector<std::string> StrengthReduction::write_handoff(const World& world, const std::string& out) const {
+  const BlockSet& b = *world.blocks;
+  std::vector<std::uint8_t> released = failed_.released;
+  if (std::find(released.begin(), released.end(), 1) == released.end())
+    return {"strength_reduction: hand-off: no block is released at F = " + number("%.4f", search_.hi()) +
+            " (it failed by the other criteria); nothing to hand off"};
+  runout::Grid layout;
+  if (has_dem_) {
+    layout = dem_;
+  } else {
+    Vec3 lo{1e300, 1e300, 0.0}, hi{-1e300, -1e300, 0.0};
+    for (std::size_t i = 0; i < b.size(); ++i)
+      for (const Vec3& v : b.shape[i].vertices) {
+        const Vec3 x = loaded_position_[i] + rotate(loaded_orientation_[i], v);
+        lo = {std::min(lo.x, x.x), std::min(lo.y, x.y), 0.0};
+        hi = {std::max(hi.x, x.x), std::max(hi.y, x.y), 0.0};
+      }
+    const double cell = handoff_cell_, m = handoff_margin_;
+    layout.cell = cell;
+    layout.x0 = lo.x - m + 0.5 * cell;
+    layout.y0 = lo.y - m + 0.5 * cell;
+    layout.resize(std::max(2, static_cast<int>(std::ceil((hi.x - lo.x + 2 * m) / cell - 1e-9))),
+                  std::max(2, static_cast<int>(std::ceil((hi.y - lo.y + 2 * m) / cell - 1e-9))), 0.0);
+  }
+  const Handoff h = build_handoff(b, loaded_position_, loaded_orientation_, released, stable_, layout,
+                                  has_dem_ ? &dem_ : nullptr);
+  // The reduced strength of the slip surface: the joint of its first contact (a pair uses block a's model).
+  const ReducedJoint* joint = nullptr;
+  for (std::size_t c = 0; c < stable_.block_a.size() && !joint; ++c)
+    if (released[stable_.block_a[c]] != released[stable_.block_b[c]])
+      joint = joint_of_body_[b.body[stable_.block_a[c]]];
+  const double fs = search_.safety_factor();
+  const double cohesion = joint ? joint->base().cohesion / fs : 0.0;
+  const double tan_friction = joint ? joint->base().tan_friction / fs : 0.0;
+  const std::string prefix = file_;
+  runout::write_esri_ascii(writers::join_path(out, prefix + "_terrain.asc"), h.terrain, 9);
+  runout::write_esri_ascii(writers::join_path(out, prefix + "_thickness.asc"), h.thickness, 9);
+  runout::write_esri_ascii(writers::join_path(out, prefix + "_basal_shear.asc"), h.basal_shear, 9);
+  const std::string scene_path = writers::join_path(out, prefix + "_runout.json");
+  const std::string description =
+      "Run-out of the blocks that fail at F_s = " + number("%.4f", fs) + " in " + params_.file() +
+      ", written by its strength_reduction stage from " + runout_template_.path + ": terrain " + prefix +
+      "_terrain.asc (blocks that hold, then the DEM), vertical release thickness " + prefix +
+      "_thickness.asc, limit-state basal shear " + prefix + "_basal_shear.asc, joint strength reduced by F_s.";
+  const std::string text = runout_scene(runout_template_, h, prefix, cohesion, tan_friction, description).dump(2);
+  writers::write_whole_file(scene_path + ".tmp", text + "\n");
+  writers::publish(scene_path + ".tmp", scene_path, false);
+  return {"strength_reduction: hand-off: released volume " + number("%.6g", h.failed_volume) + " m^3, in the "
+          "thickness raster " + number("%.6g", h.raster_volume) + " m^3 (" +
+              number("%+.3f", 100.0 * (h.raster_volume / h.failed_volume - 1.0)) + " %); basal shear from " +
+              std::to_string(h.slip_contacts) + " slip-surface contacts; c/F_s = " + number("%.4g", cohesion) +
+              " Pa, phi_F = " + number("%.4g", std::atan(tan_friction) * 180.0 / 3.141592653589793) + " deg",
+          "strength_reduction: run-out scene " + scene_path + " (run it: talus run " + scene_path + ")"};
 }
 
 }  // namespace talus::strength_reduction

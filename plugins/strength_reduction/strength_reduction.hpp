@@ -23,8 +23,10 @@
 
 #include "dda_stage.hpp"
 #include "factor_search.hpp"
+#include "grid.hpp"
 #include "limit_state.hpp"
 #include "reduced_joint.hpp"
+#include "runout_scene.hpp"
 #include "talus/params.hpp"
 #include "talus/stage.hpp"
 #include "trial_log.hpp"
@@ -61,6 +63,7 @@ class StrengthReduction final : public Stage {
   TrialResult relax(World& world, double factor);
   double displacement(const BlockSet& b) const;
   void restore_loaded_state(World& world);
+  std::vector<std::string> write_handoff(const World& world, const std::string& output_directory) const;
 
   ParamValues params_;
   double tolerance_ = 0.005, ratio_limit_ = 1e-5, damping_ = 0.8, displacement_limit_ = -1.0;
@@ -69,6 +72,7 @@ class StrengthReduction final : public Stage {
 
   std::unique_ptr<dda::DdaStage> dda_;
   std::vector<std::unique_ptr<ReducedJoint>> joints_;
+  std::vector<const ReducedJoint*> joint_of_body_;
   std::vector<Monitor> monitors_;
 
   FactorSearch search_;
@@ -79,6 +83,13 @@ class StrengthReduction final : public Stage {
   std::vector<Quaternion> loaded_orientation_;
   std::vector<TrialResult> log_;
   LimitState stable_, failed_;
+
+  // Hand-off to run-out (when "handoff" is given).
+  bool handoff_ = false;
+  double handoff_cell_ = 0.0, handoff_margin_ = 0.0;
+  bool has_dem_ = false;
+  runout::Grid dem_;
+  RunoutTemplate runout_template_;
 };
 
 }  // namespace talus::strength_reduction

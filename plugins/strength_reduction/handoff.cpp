@@ -1,0 +1,105 @@
+#include "handoff.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace talus::strength_reduction {
+namespace {
+
+// Sub-samples per cell side for the cell-averaged thickness.
+constexpr int samples = 4;
+
+}  // namespace
+
+bool vertical_extent(const Polyhedron& shape, const Vec3& x, const Quaternion& q, double px, double py, double& lo,
+                     double& hi) {
+  lo = -std::numeric_limits<double>::infinity();
+  hi = std::numeric_limits<double>::infinity();
+  for (std::size_t f = 0; f < shape.faces.size(); ++f) {
+    const Vec3 n = rotate(q, shape.normals[f]);
+    const double rest = shape.offsets[f] + dot(n, x) - n.x * px - n.y * py;  // n_z z <= rest
+    if (std::abs(n.z) < 1e-12) {
+      if (rest < 0.0) return false;
+    } else if (n.z > 0.0) {
+      hi = std::min(hi, rest / n.z);
+    } else {
+      lo = std::max(lo, rest / n.z);
+    }
+  }
+  return lo < hi;
+}
+
+double inverse_distance(std::span<const Vec3> points, std::span<const double> values, double x, double y,
+                        double nodata) {
+  double weights = 0.0, sum = 0.0;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const double d = std::hypot(points[k].x - x, points[k].y - y);
+    if (d < 1e-12) return values[k];
+    weights += 1.0 / d;
+    sum += values[k] / d;
+  }
+  return weights > 0.0 ? sum / weights : nodata;
+}
+
+Handoff build_handoff(const BlockSet& b, const std::vector<Vec3>& position, const std::vector<Quaternion>& orientation,
+                      const std::vector<std::uint8_t>& released, const LimitState& limit, const runout::Grid& layout,
+                      const runout::Grid* dem) {
+  Handoff h;
+  h.terrain = h.thickness = h.basal_shear = layout;
+  const double nodata = layout.nodata;
+  std::fill(h.thickness.value.begin(), h.thickness.value.end(), 0.0);
+  std::fill(h.basal_shear.value.begin(), h.basal_shear.value.end(), nodata);
+
+  // The slip surface: contacts between a released block and one that holds.
+  std::vector<Vec3> points;
+  std::vector<double> stress;
+  for (std::size_t c = 0; c < limit.point.size(); ++c) {
+    if (released[limit.block_a[c]] == released[limit.block_b[c]] || !(limit.area[c] > 0.0)) continue;
+    points.push_back(limit.point[c]);
+    stress.push_back(limit.shear_force[c] / limit.area[c]);
+  }
+  h.slip_contacts = points.size();
+
+  double mass = 0.0;
+  for (std::size_t i = 0; i < b.size(); ++i)
+    if (released[i]) {
+      h.failed_volume += b.volume[i];
+      mass += b.mass[i];
+    }
+  h.density = h.failed_volume > 0.0 ? mass / h.failed_volume : 0.0;
+
+  const double cell = layout.cell;
+  for (int r = 0; r < layout.nrows; ++r)
+    for (int col = 0; col < layout.ncols; ++col) {
+      const double x = layout.x_of(col), y = layout.y_of(r);
+      double top = -std::numeric_limits<double>::infinity(), lo = 0.0, hi = 0.0;
+      bool covered = false;
+      for (std::size_t i = 0; i < b.size(); ++i) {
+        if (!vertical_extent(b.shape[i], position[i], orientation[i], x, y, lo, hi)) continue;
+        covered = true;
+        if (!released[i]) top = std::max(top, hi);
+      }
+      double& z = h.terrain.at(col, r);
+      if (covered)
+        z = std::isfinite(top) ? top : (dem ? dem->at(col, r) : nodata);
+      else
+        z = dem ? dem->at(col, r) : nodata;
+
+      double column = 0.0;
+      for (int sy = 0; sy < samples; ++sy)
+        for (int sx = 0; sx < samples; ++sx) {
+          const double px = x + ((sx + 0.5) / samples - 0.5) * cell, py = y + ((sy + 0.5) / samples - 0.5) * cell;
+          for (std::size_t i = 0; i < b.size(); ++i)
+            if (released[i] && vertical_extent(b.shape[i], position[i], orientation[i], px, py, lo, hi))
+              column += hi - lo;
+        }
+      column /= samples * samples;
+      h.thickness.at(col, r) = column;
+      h.raster_volume += column * cell * cell;
+      if (column > 0.0) h.basal_shear.at(col, r) = inverse_distance(points, stress, x, y, nodata);
+    }
+  return h;
+}
+
+}  // namespace talus::strength_reduction

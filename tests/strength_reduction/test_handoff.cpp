@@ -1,0 +1,110 @@
+// The pieces of the hand-off: the vertical extent of a posed block, the
+// inverse-distance interpolation of the basal shear (seed eq. 30, m = 1), and
+// the rasters of a block resting on a fixed one (volume, terrain, shear).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "handoff.hpp"
+
+using namespace talus;
+using namespace talus::strength_reduction;
+
+namespace {
+
+// A box about its centre: the face planes are all vertical_extent reads.
+Polyhedron box(Vec3 half) {
+  Polyhedron p;
+  for (int axis = 0; axis < 3; ++axis)
+    for (double sign : {-1.0, 1.0}) {
+      Vec3 n{};
+      n[axis] = sign;
+      p.normals.push_back(n);
+      p.offsets.push_back(half[axis]);
+      p.faces.push_back({});
+    }
+  p.radius = norm(half);
+  return p;
+}
+
+Quaternion about_y(double degrees) {
+  const double a = 0.5 * degrees * std::numbers::pi / 180.0;
+  return {std::cos(a), 0.0, std::sin(a), 0.0};
+}
+
+}  // namespace
+
+TEST(Handoff, VerticalExtentOfATiltedBox) {
+  // A 2 x 2 x 1 box tilted 30 degrees about y: over its centre the vertical
+  // chord is 1 / cos 30; the line x = 3 misses it.
+  const Polyhedron s = box({1.0, 1.0, 0.5});
+  const Vec3 x{0.0, 0.0, 5.0};
+  double lo = 0.0, hi = 0.0;
+  ASSERT_TRUE(vertical_extent(s, x, about_y(30.0), 0.0, 0.0, lo, hi));
+  EXPECT_NEAR(hi - lo, 1.0 / std::cos(std::numbers::pi / 6.0), 1e-12);
+  EXPECT_NEAR(0.5 * (hi + lo), 5.0, 1e-12);
+  EXPECT_FALSE(vertical_extent(s, x, about_y(30.0), 3.0, 0.0, lo, hi));
+  EXPECT_FALSE(vertical_extent(s, x, {}, 0.0, 1.5, lo, hi));
+}
+
+TEST(Handoff, InverseDistanceKeepsConstantsNodesAndBounds) {
+  const std::vector<Vec3> points{{0, 0, 0}, {4, 0, 0}, {0, 3, 0}, {5, 5, 0}};
+  const std::vector<double> constant(4, 7.5);
+  for (double x : {-2.0, 0.3, 1.7, 6.0})
+    EXPECT_NEAR(inverse_distance(points, constant, x, 0.5 * x, -1.0), 7.5, 1e-12);
+  const std::vector<double> values{1.0, 2.0, 3.0, 4.0};
+  EXPECT_EQ(inverse_distance(points, values, 4.0, 0.0, -1.0), 2.0);  // on a node: its value
+  for (double x = -3.0; x < 8.0; x += 0.7) {  // a weighted mean: inside [min, max]
+    const double v = inverse_distance(points, values, x, 1.3, -1.0);
+    EXPECT_GE(v, 1.0);
+    EXPECT_LE(v, 4.0);
+  }
+  // With m = 1, between two nodes the weights are linear in the position, so
+  // a linear field along the segment is met; with three nodes in the plane it
+  // is not: f = x at (0, 0), (2, 0), (0, 2) gives 2/3 at (1, 1), not 1.
+  const std::vector<Vec3> pair{{0, 0, 0}, {2, 0, 0}};
+  const std::vector<double> linear{0.0, 2.0};
+  for (double x : {0.25, 0.5, 1.0, 1.7}) EXPECT_NEAR(inverse_distance(pair, linear, x, 0.0, -1.0), x, 1e-12);
+  const std::vector<Vec3> triangle{{0, 0, 0}, {2, 0, 0}, {0, 2, 0}};
+  EXPECT_NEAR(inverse_distance(triangle, {{0.0, 2.0, 0.0}}, 1.0, 1.0, -1.0), 2.0 / 3.0, 1e-12);
+  EXPECT_EQ(inverse_distance({}, {}, 0.0, 0.0, -1.0), -1.0);
+}
+
+TEST(Handoff, RastersOfABlockOnAFixedBase) {
+  // A fixed base (top at z = 0) and a released 4 x 2 x 1 block on it, on a
+  // 0.5 m grid: terrain 0 under the block, thickness 1 over its footprint,
+  // volume conserved, shear from the two slip-surface contacts.
+  BlockSet b;
+  b.name = {"base", "block"};
+  b.shape = {box({5.0, 5.0, 1.0}), box({2.0, 1.0, 0.5})};
+  b.volume = {200.0, 8.0};
+  b.mass = {4e5, 16000.0};
+  const std::vector<Vec3> position{{0, 0, -1}, {0, 0, 0.5}};
+  const std::vector<Quaternion> orientation(2);
+  const std::vector<std::uint8_t> released{0, 1};
+  LimitState limit;
+  limit.point = {{-1, 0, 0}, {1, 0, 0}, {0, 0, 1}};
+  limit.area = {4.0, 4.0, 4.0};
+  limit.shear_force = {4000.0, 8000.0, 1e9};  // 1 and 2 kPa on the slip surface; the third is not on it
+  limit.block_a = {0, 0, 1};
+  limit.block_b = {1, 1, 1};
+  runout::Grid layout;
+  layout.cell = 0.5;
+  layout.x0 = -4.75;
+  layout.y0 = -2.75;
+  layout.resize(20, 12, 0.0);
+  const Handoff h = build_handoff(b, position, orientation, released, limit, layout, nullptr);
+  EXPECT_EQ(h.slip_contacts, 2u);
+  EXPECT_NEAR(h.failed_volume, 8.0, 1e-12);
+  EXPECT_NEAR(h.raster_volume, 8.0, 1e-9);
+  EXPECT_NEAR(h.density, 2000.0, 1e-9);
+  EXPECT_NEAR(h.terrain.at(10, 6), 0.0, 1e-12);       // (0.25, 0.25): the base's top
+  EXPECT_NEAR(h.thickness.at(10, 6), 1.0, 1e-12);
+  EXPECT_EQ(h.thickness.at(0, 0), 0.0);               // (-4.75, -2.75): off the block
+  EXPECT_EQ(h.basal_shear.at(0, 0), layout.nodata);   // no released mass there
+  // At (0.25, 0.25): 1 kPa at distance d1 from (-1, 0), 2 kPa at d2 from (1, 0).
+  const double d1 = std::hypot(1.25, 0.25), d2 = std::hypot(0.75, 0.25);
+  EXPECT_NEAR(h.basal_shear.at(10, 6), (1000.0 / d1 + 2000.0 / d2) / (1.0 / d1 + 1.0 / d2), 1e-9);
+}
