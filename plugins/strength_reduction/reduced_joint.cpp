@@ -16,12 +16,13 @@ ReducedJoint::ReducedJoint(const std::string& model, const ParamValues& v, const
   reduced_ = base_;
 }
 
-void ReducedJoint::set_factor(double factor) {
+void ReducedJoint::set_factor(double factor, bool unbreakable) {
   factor_ = factor;
   reduced_ = base_;
   reduced_.tan_friction = base_.tan_friction / factor;
   reduced_.cohesion = base_.cohesion / factor;
-  reduced_.tensile_strength = base_.tensile_strength / factor;
+  // Finite, so that a contact without area (tensile capacity 0 x strength) stays a plain 0.
+  reduced_.tensile_strength = unbreakable ? 1e30 : base_.tensile_strength / factor;
 }
 
 double ReducedJoint::max_stiffness() const { return contact::max_stiffness(base_); }

@@ -18,7 +18,11 @@ class ReducedJoint final : public dda::ContactModel {
   // InputError through `body` for a model whose strength cannot be reduced.
   ReducedJoint(const std::string& model, const ParamValues& v, const ParamValues& body);
 
-  void set_factor(double factor);
+  // Strengths divided by `factor`. `unbreakable`: a bond holds any tension
+  // too (the gravity-loaded state, where no joint may open: with a tensile
+  // strength of zero, a contact that starts a rounding error apart would
+  // otherwise lose its cohesion before the springs take up the weight).
+  void set_factor(double factor, bool unbreakable = false);
   double factor() const { return factor_; }
   const contact::JointParameters& base() const { return base_; }
 

@@ -19,8 +19,9 @@
 namespace talus::strength_reduction {
 namespace {
 
-// The gravity-loaded state is relaxed with every strength multiplied by this,
-// so that no joint slips or breaks while the springs take up the weight.
+// The gravity-loaded state is relaxed with every strength multiplied by this
+// (and bonds unbreakable in tension), so that no joint slips or breaks while
+// the springs take up the weight.
 constexpr double elastic_factor = 1e-6;
 
 std::string number(const char* fmt, double v) {
@@ -279,7 +280,7 @@ double StrengthReduction::displacement(const BlockSet& b) const {
 
 TrialResult StrengthReduction::relax(World& world, double factor) {
   const auto t0 = std::chrono::steady_clock::now();
-  for (auto& j : joints_) j->set_factor(factor);
+  for (auto& j : joints_) j->set_factor(factor, !loaded_);
   BlockSet& b = *world.blocks;
   TrialResult r;
   r.factor = factor;

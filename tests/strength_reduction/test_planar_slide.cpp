@@ -53,6 +53,16 @@ TEST(PlanarSlide, CohesionOnlyAndFrictionOnlyMatchTheirClosedForms) {
   expect_closed_form({.stiffness = 1e9}, "softer_joint");
 }
 
+TEST(PlanarSlide, ASlabStartingARoundingErrorAboveItsJointKeepsItsCohesion) {
+  // 1 um above the slip plane (within the contact margin): the joint has no tensile strength, and without an
+  // unbreakable gravity-loaded state its bond broke before the springs took the weight (F_s 1.0007: friction only).
+  nlohmann::json scene = planar_slide({});
+  for (auto& v : scene["bodies"][1]["shape"]["polyhedron"]["vertices"]) v[2] = v[2].get<double>() + 1e-6;
+  const FactorRun r = run_scene(scene, "lifted");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NEAR(r.safety_factor / closed_form({}), 1.0, 0.01);
+}
+
 TEST(PlanarSlide, TheTrialTableShowsHoldingJointsStickingAndFailingOnesSlipping) {
   const FactorRun r = run_scene(planar_slide({}), "table");
   ASSERT_EQ(r.exit_code, 0) << r.output;
