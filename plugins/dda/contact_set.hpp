@@ -3,6 +3,7 @@
 // contiguous and the history of the previous step can be merged in one pass.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <tuple>
 #include <vector>
@@ -27,16 +28,47 @@ class ContactSet {
   void resize(std::size_t n);
 
   // Copies the history (shear spring, state) of every contact of `previous`
-  // whose key is also here; new contacts get `fresh_state(model)`.
+  // whose key is also here. A contact whose key is new takes the history of
+  // the nearest unmatched previous contact of the same block pair within
+  // `tolerance` (m): the clipped manifold of a resting contact may relabel its
+  // points (a reference face swapped between coplanar faces), and a reset
+  // spring would let the block slip and re-stick for ever. The rest get
+  // `fresh_state(model)`.
   template <class FreshState>
-  void inherit(const ContactSet& previous, FreshState&& fresh_state) {
+  void inherit(const ContactSet& previous, FreshState&& fresh_state, double tolerance) {
+    matched_.assign(previous.size(), 0);
+    unmatched_.clear();
     std::size_t p = 0;
     for (std::size_t c = 0; c < size(); ++c) {
       while (p < previous.size() && previous.key[p] < key[c]) ++p;
       if (p < previous.size() && previous.key[p] == key[c]) {
         shear[c] = previous.shear[p];
         state[c] = previous.state[p];
+        matched_[p] = 1;
         ++p;
+      } else {
+        unmatched_.push_back(c);
+      }
+    }
+    for (const std::size_t c : unmatched_) {
+      const ContactKey first{key[c].model, key[c].a, key[c].b, 0};
+      std::size_t q = static_cast<std::size_t>(
+          std::lower_bound(previous.key.begin(), previous.key.end(), first) - previous.key.begin());
+      std::size_t best = previous.size();
+      double best_distance = tolerance;
+      for (; q < previous.size() && previous.key[q].model == first.model && previous.key[q].a == first.a &&
+             previous.key[q].b == first.b;
+           ++q) {
+        const double d = norm(previous.point[q] - point[c]);
+        if (!matched_[q] && d <= best_distance) {
+          best = q;
+          best_distance = d;
+        }
+      }
+      if (best < previous.size()) {
+        shear[c] = previous.shear[best];
+        state[c] = previous.state[best];
+        matched_[best] = 1;
       } else {
         shear[c] = {};
         state[c] = fresh_state(key[c].model);
@@ -51,6 +83,10 @@ class ContactSet {
   std::vector<Vec3> point, normal, velocity, shear, force;
   std::vector<double> gap, area, mass, strain_energy, dissipated;
   std::vector<std::uint8_t> state;
+
+ private:
+  std::vector<std::uint8_t> matched_;     // scratch of inherit()
+  std::vector<std::size_t> unmatched_;
 };
 
 }  // namespace talus::dda

@@ -280,9 +280,12 @@ void DdaStage::detect(const BlockSet& b, bool initial) {
     contacts_.mass[c] = 1.0 / (inverse_sum * cp.manifold_size);
     contacts_.velocity[c] = b.velocity_at(f.b, cp.point) - b.velocity_at(f.a, cp.point);
   }
-  contacts_.inherit(previous_, [&](std::uint32_t model) {
-    return initial ? models_[model]->initial_state() : static_cast<std::uint8_t>(contact_open);
-  });
+  contacts_.inherit(
+      previous_,
+      [&](std::uint32_t model) {
+        return initial ? models_[model]->initial_state() : static_cast<std::uint8_t>(contact_open);
+      },
+      margin_);
   model_begin_.assign(models_.size() + 1, n);
   for (std::size_t c = n; c-- > 0;) model_begin_[contacts_.key[c].model] = c;
   for (std::size_t m = models_.size(); m-- > 0;) model_begin_[m] = std::min(model_begin_[m], model_begin_[m + 1]);

@@ -89,9 +89,12 @@ EdgeQuery query_edges(const PosedBlock& a, const PosedBlock& b, double margin, N
   return q;
 }
 
-// Keeps the part of the polygon with dot(s, p) <= offset.
+// Keeps the part of the polygon with dot(s, p) <= offset (s a unit normal).
+// A vertex within `eps` of the plane counts as on it: coincident faces then
+// clip to the same points every step instead of a vertex and a crossing a
+// rounding error apart, whose number (4 or 8 springs) would flip.
 void clip(std::vector<Vec3>& poly, std::vector<std::uint64_t>& ids, const Vec3& s, double offset, std::uint64_t plane,
-          NarrowPhaseScratch& scratch) {
+          double eps, NarrowPhaseScratch& scratch) {
   auto& out = scratch.next;
   auto& out_ids = scratch.next_ids;
   out.clear();
@@ -100,11 +103,11 @@ void clip(std::vector<Vec3>& poly, std::vector<std::uint64_t>& ids, const Vec3& 
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t j = (i + 1) % n;
     const double dp = dot(s, poly[i]) - offset, dq = dot(s, poly[j]) - offset;
-    if (dp <= 0.0) {
+    if (dp <= eps) {
       out.push_back(poly[i]);
       out_ids.push_back(ids[i]);
     }
-    if ((dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0)) {
+    if ((dp < -eps && dq > eps) || (dp > eps && dq < -eps)) {
       const double t = dp / (dp - dq);
       out.push_back(poly[i] + t * (poly[j] - poly[i]));
       out_ids.push_back(mix(mix(ids[i], ids[j]), plane));
@@ -136,10 +139,12 @@ int face_contact(const PosedBlock& ref, int rf, const PosedBlock& inc, double ma
     ids.push_back(static_cast<std::uint64_t>(v));  // an incident vertex keeps its id whatever the face
   }
   const auto& rface = ref.shape->faces[rf];
+  const double eps = 1e-3 * margin;
   for (std::size_t k = 0; k < rface.size() && !poly.empty(); ++k) {
     const Vec3 p0 = ref.vertices[rface[k]], p1 = ref.vertices[rface[(k + 1) % rface.size()]];
-    const Vec3 side = cross(p1 - p0, n);  // outward normal of the side plane through edge k
-    clip(poly, ids, side, dot(side, p0), 0x5bd1e995ull + (static_cast<std::uint64_t>(rf) << 20) + k, scratch);
+    Vec3 side = cross(p1 - p0, n);  // outward normal of the side plane through edge k
+    side = side / norm(side);
+    clip(poly, ids, side, dot(side, p0), 0x5bd1e995ull + (static_cast<std::uint64_t>(rf) << 20) + k, eps, scratch);
   }
   const std::uint64_t kind = ref_is_a ? feature_face_a : feature_face_b;
   const Vec3 normal = ref_is_a ? n : -n;

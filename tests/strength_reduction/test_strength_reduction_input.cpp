@@ -87,3 +87,46 @@ TEST(StrengthReductionInput, ABracketThatMissesTheFactorSaysWhichEndToMove) {
   EXPECT_NE(r.output.find("still holds at F = 1.0000"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("/pipeline/0/bracket/1"), std::string::npos) << r.output;
 }
+
+namespace {
+
+// A prism over y in [0, 1] of a counter-clockwise section polygon (x, z), faces listed outward.
+nlohmann::json prism_block(const std::string& name, std::vector<std::pair<double, double>> section, bool fixed) {
+  const std::size_t n = section.size();
+  nlohmann::json vertices = nlohmann::json::array(), faces = nlohmann::json::array();
+  for (int y = 0; y < 2; ++y)
+    for (const auto& [x, z] : section) vertices.push_back({x, double(y), z});
+  nlohmann::json front = nlohmann::json::array(), back = nlohmann::json::array();
+  for (std::size_t k = 0; k < n; ++k) {
+    front.push_back(k);
+    back.push_back(2 * n - 1 - k);
+  }
+  faces.push_back(front);
+  faces.push_back(back);
+  for (std::size_t k = 0; k < n; ++k) faces.push_back({k, n + k, n + (k + 1) % n, (k + 1) % n});
+  return {{"name", name}, {"kind", "block"}, {"density", 2038.7}, {"fixed", fixed},
+          {"shape", {{"polyhedron", {{"vertices", vertices}, {"faces", faces}}}}},
+          {"contact", {{"type", "mohr_coulomb"}, {"normal_stiffness", 1e9}, {"friction_angle", 20}, {"cohesion", 1e4},
+                       {"damping_ratio", 0}, {"shear_softening", "none"}}}};
+}
+
+}  // namespace
+
+TEST(StrengthReductionInput, APackOfBlocksOnLevelGroundHoldsAtEveryFactor) {
+  // Four 2.5 m prisms packed 2 x 2 on a level floor cannot fail: every trial must reach equilibrium. Coincident
+  // faces once clipped to 4 or 8 points and relabelled them from step to step, resetting the springs, and the
+  // pack chattered without end (the gravity-loaded state or the first trial never came to rest).
+  nlohmann::json s = planar_slide({});
+  // Away from the origin, where the face planes' offsets carry rounding errors of a few 1e-15 m.
+  s["bodies"] = {prism_block("floor", {{-25, -10}, {30, -10}, {30, 0}, {-25, 0}}, true)};
+  for (int i = 0; i < 2; ++i)
+    for (int k = 0; k < 2; ++k) {
+      const double x = -15.0 + 2.5 * i, z = 2.5 * k;
+      s["bodies"].push_back(prism_block("b" + std::to_string(i) + std::to_string(k),
+                                        {{x, z}, {x + 2.5, z}, {x + 2.5, z + 2.5}, {x, z + 2.5}}, false));
+    }
+  s["pipeline"][0].erase("monitors");
+  const FactorRun r = run_scene(s, "pack");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("still holds at F = 4.0000"), std::string::npos) << r.output;
+}
