@@ -8,7 +8,7 @@ namespace talus::strength_reduction {
 namespace {
 
 // Sub-samples per cell side for the cell-averaged thickness.
-constexpr int samples = 4;
+constexpr int samples = 8;
 
 }  // namespace
 

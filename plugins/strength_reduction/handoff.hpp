@@ -4,7 +4,7 @@
 //                cell centre, else the surrounding DEM (the slip surface under
 //                the failed mass, the rest of the slope around it);
 //   thickness    the vertical thickness of the failed blocks over each cell,
-//                averaged over the cell (so its volume is the blocks' volume
+//                averaged over 8 x 8 points of the cell (so its volume is the blocks' volume
 //                to a fraction of a cell along the edges);
 //   basal shear  the limit-state shear stress of the contacts on the slip
 //                surface, interpolated to each cell centre by inverse distance
