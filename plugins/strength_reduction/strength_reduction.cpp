@@ -473,6 +473,18 @@ std::vector<std::string> StrengthReduction::finish(World& world, const std::stri
     throw RunError("error: strength_reduction: the slope still holds at F = " + hi + ", so F_s > " + hi +
                    "; raise bracket[1] (" + params_.pointer("bracket") + "/1). Trials: " + csv);
   std::vector<std::string> lines;
+  for (std::size_t k = 0; k < log_.size(); ++k) {
+    const TrialResult& t = log_[k];
+    double monitor = 0.0;
+    for (const Vec3& d : t.monitors) monitor = std::max(monitor, norm(d));
+    lines.push_back("strength_reduction: trial " + std::to_string(k) + " F = " +
+                    (std::isinf(t.factor) ? std::string("elastic") : number("%.4f", t.factor)) + ": " + outcome(t) +
+                    "; " + std::to_string(t.steps) + " steps, ratio " + number("%.2g", t.ratio) + "; contacts " +
+                    std::to_string(t.open) + " open, " + std::to_string(t.stick) + " closed, " +
+                    std::to_string(t.slip) + " slip; displacement " + number("%.3g", t.displacement) + " m" +
+                    (t.monitors.empty() ? "" : ", monitors up to " + number("%.3g", monitor) + " m") + "; " +
+                    number("%.3g", t.wall_seconds) + " s");
+  }
   if (search_.phase() == Phase::done) {
     lines.push_back("strength_reduction: F_s = " + number("%.4f", search_.safety_factor()) + " (holds at " + lo +
                     ", fails at " + hi + "; tolerance " + number("%g", tolerance_) + "; " + cost + ")");
