@@ -1,11 +1,14 @@
 #include "checkpoint.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 
+#include "checkpoint_check.hpp"
+#include "crc32.hpp"
 #include "talus/blocks.hpp"
 #include "talus/error.hpp"
 #include "talus/world.hpp"
@@ -14,64 +17,96 @@ namespace talus {
 
 namespace {
 
-constexpr char magic[8] = {'T', 'A', 'L', 'U', 'S', 'C', 'K', '1'};
+// Header: magic (7 bytes + the format version as a digit), the payload's
+// length and its CRC-32. The payload follows. Version 2 added the length and
+// the checksum; a file of another version is refused, never guessed at.
+constexpr char magic[7] = {'T', 'A', 'L', 'U', 'S', 'C', 'K'};
+constexpr char format_version = '2';
+constexpr std::size_t header_bytes = sizeof magic + 1 + sizeof(std::uint64_t) + sizeof(std::uint32_t);
 
 class Out {
  public:
   explicit Out(std::ofstream& s) : s_(s) {}
   template <class T>
-  void pod(const T& v) { s_.write(reinterpret_cast<const char*>(&v), sizeof v); }
-  void bytes(const void* p, std::size_t n) { pod<std::uint64_t>(n); s_.write(static_cast<const char*>(p), n); }
+  void pod(const T& v) { raw(&v, sizeof v); }
+  void bytes(const void* p, std::size_t n) { pod<std::uint64_t>(n); raw(p, n); }
   void text(const std::string& t) { bytes(t.data(), t.size()); }
   template <class T>
   void vec(const std::vector<T>& v) { bytes(v.data(), v.size() * sizeof(T)); }
+  std::uint64_t size() const { return size_; }
+  std::uint32_t crc() const { return crc_; }
 
  private:
+  void raw(const void* p, std::size_t n) {
+    s_.write(static_cast<const char*>(p), static_cast<std::streamsize>(n));
+    crc_ = crc32(p, n, crc_);
+    size_ += n;
+  }
   std::ofstream& s_;
+  std::uint64_t size_ = 0;
+  std::uint32_t crc_ = 0;
 };
 
+// Reads the payload knowing how many bytes are left, so that no length read
+// from the file can make it allocate more than the file holds.
 class In {
  public:
-  In(std::ifstream& s, const std::string& path) : s_(s), path_(path) {}
+  In(std::ifstream& s, const std::string& path, std::uint64_t remaining) : s_(s), path_(path), left_(remaining) {}
   template <class T>
-  T pod() {
+  T pod(const std::string& what) {
     T v{};
-    s_.read(reinterpret_cast<char*>(&v), sizeof v);
-    check();
+    raw(&v, sizeof v, what);
     return v;
   }
-  std::string text() {
-    const auto n = pod<std::uint64_t>();
-    if (n > (1ull << 40)) corrupt();
-    std::string t(n, '\0');
-    s_.read(t.data(), static_cast<std::streamsize>(n));
-    check();
+  // A length-prefixed block of whole elements of `element` bytes.
+  std::uint64_t length(const std::string& what, std::size_t element = 1) {
+    const auto n = pod<std::uint64_t>(what + " length");
+    if (n > left_) fail(what + " claims " + std::to_string(n) + " bytes, only " + std::to_string(left_) + " remain");
+    if (n % element) fail(what + " holds " + std::to_string(n) + " bytes, not a whole number of " + std::to_string(element) + "-byte values");
+    return n;
+  }
+  std::string text(const std::string& what) {
+    std::string t(length(what), '\0');
+    raw(t.data(), t.size(), what);
     return t;
   }
   template <class T>
-  void into(T* data, std::size_t count) {
-    const auto n = pod<std::uint64_t>();
-    if (n != count * sizeof(T)) corrupt();
-    s_.read(reinterpret_cast<char*>(data), static_cast<std::streamsize>(n));
-    check();
-  }
-  template <class T>
-  std::vector<T> vec() {
-    const std::string t = text();
-    if (t.size() % sizeof(T)) corrupt();
-    std::vector<T> v(t.size() / sizeof(T));
-    if (!v.empty()) std::memcpy(v.data(), t.data(), t.size());  // an empty vector's data() may be null
+  std::vector<T> vec(const std::string& what) {
+    std::vector<T> v(length(what, sizeof(T)) / sizeof(T));
+    raw(v.data(), v.size() * sizeof(T), what);
     return v;
   }
-  [[noreturn]] void corrupt() const { throw InputError("error: " + path_ + ": checkpoint is truncated or corrupt"); }
+  template <class T>
+  void into(T* data, std::size_t count, const std::string& what) {
+    const auto n = length(what, sizeof(T));
+    if (n != count * sizeof(T))
+      fail(what + " holds " + std::to_string(n / sizeof(T)) + " values, expected " + std::to_string(count));
+    raw(data, n, what);
+  }
+  std::uint64_t left() const { return left_; }
+  [[noreturn]] void fail(const std::string& what) const { throw InputError("error: checkpoint " + path_ + ": " + what); }
 
  private:
-  void check() const {
-    if (!s_) corrupt();
+  void raw(void* p, std::size_t n, const std::string& what) {
+    if (n > left_) fail("truncated: " + what + " needs " + std::to_string(n) + " bytes, only " + std::to_string(left_) + " remain");
+    if (n) s_.read(static_cast<char*>(p), static_cast<std::streamsize>(n));
+    if (!s_) fail("cannot read " + what + ": " + std::strerror(errno));
+    left_ -= n;
   }
   std::ifstream& s_;
-  std::string path_;
+  const std::string& path_;
+  std::uint64_t left_;
 };
+
+std::size_t field_bytes(FieldType type) {
+  switch (type) {
+    case FieldType::scalar: return sizeof(double);
+    case FieldType::vector: return sizeof(Vec3);
+    case FieldType::integer: return sizeof(std::int32_t);
+    case FieldType::id: return sizeof(std::uint64_t);
+  }
+  return 0;
+}
 
 void save_store(Out& out, const ParticleStore& store) {
   out.pod<std::uint64_t>(store.size());
@@ -90,28 +125,85 @@ void save_store(Out& out, const ParticleStore& store) {
   }
 }
 
-void load_store(In& in, ParticleStore& store, const char* which) {
-  const auto n = in.pod<std::uint64_t>();
-  const auto next_id = in.pod<std::uint64_t>();
+// The checkpoint holds exactly the fields this scene's stages registered, each
+// once, with its type; the particle count must fit in the bytes that are left.
+void load_store(In& in, ParticleStore& store, const std::string& which) {
+  const auto n = in.pod<std::uint64_t>(which + " particle count");
+  const auto next_id = in.pod<std::uint64_t>(which + " next id");
+  const auto fields = store.fields();
+  const auto count = in.pod<std::uint32_t>(which + " field count");
+  if (count != fields.size())
+    in.fail("the " + which + " store has " + std::to_string(count) + " fields, this scene's stages use " +
+            std::to_string(fields.size()));
+  std::uint64_t per_particle = 0;
+  for (const auto& f : fields) per_particle += field_bytes(f.type);
+  if (n > in.left() / std::max<std::uint64_t>(per_particle, 1))
+    in.fail("the " + which + " store claims " + std::to_string(n) + " particles, more than the " +
+            std::to_string(in.left()) + " bytes left in the file can hold");
   // Resize to n particles (removal keeps the layout; append grows it).
   std::vector<std::uint8_t> drop(store.size(), 1);
   store.remove_if(drop);
   store.append(n);
   store.set_next_id(next_id);
-  const auto count = in.pod<std::uint32_t>();
+  std::vector<std::string> seen;
   for (std::uint32_t k = 0; k < count; ++k) {
-    const std::string name = in.text();
-    const auto type = static_cast<FieldType>(in.pod<std::uint8_t>());
+    const std::string name = in.text(which + " field name");
+    const auto type_byte = in.pod<std::uint8_t>(which + " field '" + name + "' type");
     if (!store.has(name))
-      throw InputError(std::string("error: checkpoint has ") + which + " field '" + name +
-                       "' that this scene's stages do not use; was it written by another scene or version?");
+      in.fail("it has " + which + " field '" + name + "' that this scene's stages do not use; was it written by another scene?");
+    if (std::find(seen.begin(), seen.end(), name) != seen.end()) in.fail(which + " field '" + name + "' appears twice");
+    seen.push_back(name);
+    const FieldType type = store.info(name).type;
+    if (type_byte != static_cast<std::uint8_t>(type))
+      in.fail(which + " field '" + name + "' has type " + std::to_string(type_byte) + ", this scene's has " +
+              std::to_string(static_cast<int>(type)));
+    const std::string what = which + " field '" + name + "'";
     switch (type) {
-      case FieldType::scalar: { auto s = store.scalar(name); in.into(s.data(), s.size()); break; }
-      case FieldType::vector: { auto s = store.vector(name); in.into(s.data(), s.size()); break; }
-      case FieldType::integer: { auto s = store.integer(name); in.into(s.data(), s.size()); break; }
-      case FieldType::id: { auto s = store.ids(); in.into(s.data(), s.size()); break; }
+      case FieldType::scalar: { auto s = store.scalar(name); in.into(s.data(), s.size(), what); break; }
+      case FieldType::vector: { auto s = store.vector(name); in.into(s.data(), s.size(), what); break; }
+      case FieldType::integer: { auto s = store.integer(name); in.into(s.data(), s.size(), what); break; }
+      case FieldType::id: { auto s = store.ids(); in.into(s.data(), s.size(), what); break; }
     }
   }
+}
+
+// Checks the header and the checksum of the whole payload before a byte of
+// it is parsed; returns the payload length.
+std::uint64_t check_header(std::ifstream& s, const std::string& path) {
+  auto fail = [&](const std::string& what) -> void { throw InputError("error: checkpoint " + path + ": " + what); };
+  std::error_code ec;
+  const std::uint64_t file_size = std::filesystem::file_size(path, ec);
+  if (ec) fail("cannot read its size: " + ec.message());
+  char head[sizeof magic + 1] = {};
+  s.read(head, sizeof head);
+  if (!s || std::memcmp(head, magic, sizeof magic) != 0) fail("not a Talus checkpoint");
+  if (head[sizeof magic] != format_version)
+    fail(std::string("format version ") + head[sizeof magic] + "; this talus reads version " + format_version +
+         " only (checkpoints do not carry across versions: rerun the scene from the start)");
+  std::uint64_t payload = 0;
+  std::uint32_t stored = 0;
+  s.read(reinterpret_cast<char*>(&payload), sizeof payload);
+  s.read(reinterpret_cast<char*>(&stored), sizeof stored);
+  if (!s) fail("truncated: the header is incomplete");
+  if (file_size - header_bytes != payload)
+    fail("truncated or extended: the header promises " + std::to_string(payload) + " payload bytes, the file holds " +
+         std::to_string(file_size - header_bytes));
+  std::vector<char> chunk(1 << 20);
+  std::uint32_t crc = 0;
+  for (std::uint64_t left = payload; left > 0;) {
+    const std::size_t n = static_cast<std::size_t>(std::min<std::uint64_t>(left, chunk.size()));
+    s.read(chunk.data(), static_cast<std::streamsize>(n));
+    if (!s) fail(std::string("cannot read the payload: ") + std::strerror(errno));
+    crc = crc32(chunk.data(), n, crc);
+    left -= n;
+  }
+  if (crc != stored) {
+    char text[96];
+    std::snprintf(text, sizeof text, "checksum mismatch (stored %08x, computed %08x): the file is corrupt", stored, crc);
+    fail(text);
+  }
+  s.seekg(static_cast<std::streamoff>(header_bytes));
+  return payload;
 }
 
 }  // namespace
@@ -130,8 +222,13 @@ void save_checkpoint(const std::string& path, const World& world, const RunState
   {
     std::ofstream s(tmp, std::ios::binary | std::ios::trunc);
     if (!s) throw RunError("error: cannot write checkpoint " + tmp + ": " + std::strerror(errno));
-    Out out(s);
     s.write(magic, sizeof magic);
+    s.put(format_version);
+    const std::uint64_t no_length = 0;
+    const std::uint32_t no_crc = 0;
+    s.write(reinterpret_cast<const char*>(&no_length), sizeof no_length);  // filled in below
+    s.write(reinterpret_cast<const char*>(&no_crc), sizeof no_crc);
+    Out out(s);
     out.pod(state.scene_hash);
     out.pod(world.time);
     out.pod(world.step);
@@ -154,6 +251,11 @@ void save_checkpoint(const std::string& path, const World& world, const RunState
       out.vec(b.external_force);
       out.vec(b.external_torque);
     }
+    const std::uint64_t length = out.size();
+    const std::uint32_t crc = out.crc();
+    s.seekp(static_cast<std::streamoff>(sizeof magic + 1));
+    s.write(reinterpret_cast<const char*>(&length), sizeof length);
+    s.write(reinterpret_cast<const char*>(&crc), sizeof crc);
     s.flush();
     if (!s) throw RunError("error: cannot write checkpoint " + tmp + ": " + std::strerror(errno));
   }
@@ -164,41 +266,45 @@ void save_checkpoint(const std::string& path, const World& world, const RunState
 
 RunState load_checkpoint(const std::string& path, World& world, std::uint64_t scene_hash) {
   std::ifstream s(path, std::ios::binary);
-  if (!s) throw InputError("error: " + path + ": cannot open checkpoint: " + std::strerror(errno));
-  char head[sizeof magic];
-  s.read(head, sizeof head);
-  if (!s || std::memcmp(head, magic, sizeof magic) != 0) throw InputError("error: " + path + ": not a Talus checkpoint");
-  In in(s, path);
+  if (!s) throw InputError("error: checkpoint " + path + ": cannot open it: " + std::strerror(errno));
+  In in(s, path, check_header(s, path));
   RunState state;
-  state.scene_hash = in.pod<std::uint64_t>();
+  state.scene_hash = in.pod<std::uint64_t>("scene hash");
   if (state.scene_hash != scene_hash)
-    throw InputError("error: " + path + ": checkpoint was written for a different scene (the scene file changed)");
-  world.time = in.pod<double>();
-  world.step = in.pod<std::uint64_t>();
-  world.removed = in.pod<std::uint64_t>();
-  state.last_output_time = in.pod<double>();
-  state.writer_next_time = in.vec<double>();
-  state.writer_next_step = in.vec<std::uint64_t>();
-  const auto stages = in.pod<std::uint64_t>();
-  for (std::uint64_t k = 0; k < stages; ++k) state.stage_states.push_back(in.text());
+    in.fail("it was written for a different scene (the scene file changed)");
+  world.time = in.pod<double>("time");
+  world.step = in.pod<std::uint64_t>("step");
+  world.removed = in.pod<std::uint64_t>("removed count");
+  state.last_output_time = in.pod<double>("last output time");
+  state.writer_next_time = in.vec<double>("output times");
+  state.writer_next_step = in.vec<std::uint64_t>("output steps");
+  const auto stages = in.pod<std::uint64_t>("stage count");
+  if (stages > in.left() / sizeof(std::uint64_t)) in.fail("the stage count " + std::to_string(stages) + " is impossible");
+  for (std::uint64_t k = 0; k < stages; ++k) state.stage_states.push_back(in.text("stage " + std::to_string(k + 1) + " state"));
   load_store(in, world.fluid, "fluid");
   load_store(in, world.boundary, "boundary");
-  const bool blocks = in.pod<std::uint8_t>() != 0;
-  if (blocks != (world.blocks != nullptr)) in.corrupt();
+  const auto blocks = in.pod<std::uint8_t>("block flag");
+  if (blocks > 1) in.fail("the block flag is " + std::to_string(blocks) + ", not 0 or 1");
+  if ((blocks != 0) != (world.blocks != nullptr))
+    in.fail(blocks ? "it has blocks, this scene has none" : "it has no blocks, this scene has some");
   if (blocks) {
     BlockSet& b = *world.blocks;
-    auto restore = [&](auto& target) {
-      auto v = in.vec<typename std::decay_t<decltype(target)>::value_type>();
-      if (v.size() != target.size()) in.corrupt();
+    auto restore = [&](auto& target, const char* what) {
+      auto v = in.vec<typename std::decay_t<decltype(target)>::value_type>(std::string("block ") + what);
+      if (v.size() != target.size())
+        in.fail("it has " + std::to_string(v.size()) + " block " + what + "s, this scene has " +
+                std::to_string(target.size()) + " blocks");
       target = std::move(v);
     };
-    restore(b.position);
-    restore(b.orientation);
-    restore(b.velocity);
-    restore(b.angular_velocity);
-    restore(b.external_force);
-    restore(b.external_torque);
+    restore(b.position, "position");
+    restore(b.orientation, "orientation");
+    restore(b.velocity, "velocity");
+    restore(b.angular_velocity, "angular velocity");
+    restore(b.external_force, "external force");
+    restore(b.external_torque, "external torque");
   }
+  if (in.left() != 0) in.fail(std::to_string(in.left()) + " bytes follow the last block");
+  check_restored_state(path, world, state);
   return state;
 }
 

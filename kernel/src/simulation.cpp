@@ -424,9 +424,28 @@ void Simulation::write_checkpoint(const std::string& path) const {
 
 void Simulation::read_checkpoint(const std::string& path) {
   RunState state = load_checkpoint(path, world_, text_hash(scene_.text));
-  if (state.stage_states.size() != stages_.size() || state.writer_next_time.size() != writers_.size())
-    throw InputError("error: " + path + ": checkpoint does not match this scene's pipeline or outputs");
-  for (std::size_t i = 0; i < stages_.size(); ++i) stages_[i]->load_state(state.stage_states[i]);
+  if (state.stage_states.size() != stages_.size())
+    throw InputError("error: checkpoint " + path + ": it has the state of " + std::to_string(state.stage_states.size()) +
+                     " stages, this scene's pipeline has " + std::to_string(stages_.size()));
+  if (state.writer_next_time.size() != writers_.size())
+    throw InputError("error: checkpoint " + path + ": it has the schedule of " +
+                     std::to_string(state.writer_next_time.size()) + " outputs, this scene has " +
+                     std::to_string(writers_.size()));
+  for (std::size_t i = 0; i < stages_.size(); ++i) {
+    try {
+      stages_[i]->load_state(state.stage_states[i]);
+    } catch (const InputError& e) {
+      // Stages see only their bytes: the file and the stage are named here.
+      std::string why = e.what();
+      for (const char* prefix : {"error: checkpoint: ", "error: "})
+        if (why.rfind(prefix, 0) == 0) {
+          why.erase(0, std::strlen(prefix));
+          break;
+        }
+      throw InputError("error: checkpoint " + path + ": stage " + std::to_string(i + 1) + " (" + stage_names_[i] +
+                       "): " + why);
+    }
+  }
   for (std::size_t i = 0; i < writers_.size(); ++i) {
     writers_[i].next_time = state.writer_next_time[i];
     writers_[i].next_step = state.writer_next_step[i];

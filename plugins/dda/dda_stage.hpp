@@ -89,6 +89,7 @@ class DdaStage final : public Stage {
   void move_kinematic(BlockSet& b, double t);
   void update_time_step(const BlockSet& b);
   void update_energy(World& world, BlockSet& b);
+  void check_restored(const BlockEnergy& energy) const;
 
   // Parameters.
   ParamValues params_;

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
+#include <limits>
 #include <fstream>
 #include <sstream>
 #include <string_view>
@@ -23,6 +25,12 @@ std::string lower(std::string s) {
 
 [[noreturn]] void fail(const std::string& path, int line, const std::string& what) {
   throw InputError("error: " + path + ":" + std::to_string(line) + ": " + what);
+}
+
+std::string text_of(double v) {
+  char t[32];
+  std::snprintf(t, sizeof t, "%.0f", v);
+  return t;
 }
 
 bool parse_number(std::string_view token, double& out) {
@@ -90,12 +98,29 @@ Grid read_esri_ascii(const std::string& path, bool allow_nodata) {
   if (cellsize < 0) missing("cellsize");
   if (!have_x) missing("xllcorner");
   if (!have_y) missing("yllcorner");
-  if (ncols < 2 || nrows < 2 || ncols != std::floor(ncols) || nrows != std::floor(nrows) || ncols * nrows > 5e8)
+  if (ncols < 2 || nrows < 2 || ncols != std::floor(ncols) || nrows != std::floor(nrows))
     throw InputError("error: " + path + ": ncols and nrows must be whole numbers >= 2 (got " +
                      std::to_string(ncols) + " x " + std::to_string(nrows) + ")");
+  if (ncols > std::numeric_limits<int>::max() || nrows > std::numeric_limits<int>::max())
+    throw InputError("error: " + path + ": ncols and nrows must be at most " +
+                     std::to_string(std::numeric_limits<int>::max()) + " (got " + text_of(ncols) + " x " +
+                     text_of(nrows) + ")");
   if (!(cellsize > 0.0)) throw InputError("error: " + path + ": cellsize must be > 0");
   if (!data_started)
     throw InputError("error: " + path + ":" + std::to_string(line_no) + ": the grid has a header but no values");
+  // A large grid's promise is checked against the file before the grid is
+  // allocated (every value takes at least a digit and a separator); a small
+  // one is read, and a shortfall reported with its line.
+  if (ncols * nrows > 1e6) {
+    std::error_code ec;
+    const double file_size = static_cast<double>(std::filesystem::file_size(path, ec));
+    const double data_bytes = file_size - static_cast<double>(in.tellg()) + static_cast<double>(line.size()) + 1.0;
+    if (!ec && in.tellg() >= 0 && data_bytes < 2.0 * ncols * nrows - 1.0)
+      throw InputError("error: " + path + ": the header promises " + text_of(ncols) + " x " + text_of(nrows) +
+                       " values, but the file holds only " + text_of(data_bytes) +
+                       " bytes of them (size mismatch)");
+  }
+  require_dem_memory(ncols, nrows, path);
 
   Grid g;
   g.cell = cellsize;

@@ -45,10 +45,12 @@ Grid read_geotiff(const std::string& path, bool allow_nodata) {
     throw InputError("error: " + path + ": cells are " + std::to_string(t[1]) + " x " + std::to_string(std::abs(t[5])) +
                      "; only square cells are supported (resample it first, e.g. gdalwarp -tr)");
   GDALRasterBand* band = ds->GetRasterBand(1);
+  if (ds->GetRasterXSize() < 2 || ds->GetRasterYSize() < 2)
+    throw InputError("error: " + path + ": a DEM needs at least 2 x 2 cells");
+  require_dem_memory(ds->GetRasterXSize(), ds->GetRasterYSize(), path);
   Grid g;
   g.cell = t[1];
   g.resize(ds->GetRasterXSize(), ds->GetRasterYSize(), 0.0);
-  if (g.ncols < 2 || g.nrows < 2) throw InputError("error: " + path + ": a DEM needs at least 2 x 2 cells");
   std::vector<double> row(g.ncols);
   int has_nodata = 0;
   const double nodata = band->GetNoDataValue(&has_nodata);

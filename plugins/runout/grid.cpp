@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+
+#include "talus/memory.hpp"
 
 namespace talus::runout {
 
@@ -15,6 +18,17 @@ double Grid::bilinear(double x, double y) const {
   const double a = at(i, j) + tx * (at(i1, j) - at(i, j));
   const double b = at(i, j1) + tx * (at(i1, j1) - at(i, j1));
   return a + ty * (b - a);
+}
+
+// Per DEM cell a run holds the elevation grid, the terrain's control points
+// and their two flag bytes (terrain.cpp), the raster layout's copy of the grid
+// and the six rasters of RunoutRasters, all 8-byte values but the flags.
+constexpr double dem_bytes_per_cell = 8.0 + 8.0 + 2.0 + 8.0 + 6.0 * 8.0;
+
+void require_dem_memory(double cols, double rows, const std::string& path) {
+  char what[128];
+  std::snprintf(what, sizeof what, "a DEM of %.0f x %.0f cells", cols, rows);
+  require_memory(cols * rows * dem_bytes_per_cell, path, what);
 }
 
 }  // namespace talus::runout

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace talus::runout {
@@ -32,5 +33,9 @@ struct Grid {
   // Bilinear interpolation between cell centres; outside, the edge value.
   double bilinear(double x, double y) const;
 };
+
+// Refuses (InputError naming `path`) a DEM of cols x rows cells whose run
+// would need more memory than is available, before the grid is allocated.
+void require_dem_memory(double cols, double rows, const std::string& path);
 
 }  // namespace talus::runout

@@ -1,6 +1,8 @@
 #include "wcsph_stage.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -274,15 +276,26 @@ std::string WcsphStage::save_state() const {
 }
 
 void WcsphStage::load_state(std::string_view bytes) {
+  // "COUNTER WORST WHEN", as save_state writes it, and nothing else.
   const std::string text(bytes);
+  auto unreadable = [&](const char* why) {
+    throw InputError("error: checkpoint: the wcsph stage's state '" + text + "' is not readable: " + why);
+  };
+  const char* p = text.c_str();
   char* end = nullptr;
-  verlet_counter_ = text.empty() ? 0 : std::strtoull(text.c_str(), &end, 10);
-  if (!end || *end == '\0') return;
+  errno = 0;
+  if (text.empty() || !std::isdigit(static_cast<unsigned char>(*p))) unreadable("no step counter");
+  const unsigned long long counter = std::strtoull(p, &end, 10);
+  if (errno == ERANGE) unreadable("the step counter is out of range");
   char* after = nullptr;
   const double worst = std::strtod(end, &after);
-  if (after == end) throw InputError("error: checkpoint: the wcsph stage's state '" + text + "' is not readable");
+  if (after == end) unreadable("no worst density deviation");
   const double when = std::strtod(after, &end);
-  if (end == after) throw InputError("error: checkpoint: the wcsph stage's state '" + text + "' is not readable");
+  if (end == after) unreadable("no time of the worst deviation");
+  if (*end != '\0') unreadable("trailing characters");
+  if (!std::isfinite(worst) || worst < 0.0 || !std::isfinite(when) || when < 0.0)
+    unreadable("the worst density deviation and its time must be finite and >= 0");
+  verlet_counter_ = counter;
   worst_deviation_ = worst;
   worst_deviation_time_ = when;
 }

@@ -111,6 +111,25 @@ void expect_same_grid(const Grid& a, const Grid& b) {
     for (int c = 0; c < a.ncols; ++c) EXPECT_NEAR(a.at(c, r), b.at(c, r), 1e-9) << "col " << c << ", row " << r;
 }
 
+// A raster whose size would need more memory than the machine has is refused
+// from its header, before the grid is allocated: a sparse GeoTIFF of 10^12
+// cells holds no data, so the file is small and nothing is read.
+TEST(GeoTiffDem, AHugeRasterIsRefusedBeforeAllocating) {
+  GDALAllRegister();
+  const std::string path = (temp_dir() / "huge.tif").string();
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
+  ASSERT_NE(driver, nullptr);
+  const char* options[] = {"SPARSE_OK=TRUE", "BIGTIFF=YES", "TILED=YES", "BLOCKXSIZE=4096", "BLOCKYSIZE=4096", nullptr};
+  GDALDataset* ds = driver->Create(path.c_str(), 1000000, 1000000, 1, GDT_Float64, const_cast<char**>(options));
+  ASSERT_NE(ds, nullptr) << path;
+  double transform[6] = {0.0, 1.0, 0.0, 1e6, 0.0, -1.0};
+  ds->SetGeoTransform(transform);
+  GDALClose(ds);
+  ASSERT_LT(fs::file_size(path), 10u << 20);
+  expect_input_error([&] { read_geotiff(path, false); },
+                     {"error: " + path + ": a DEM of 1000000 x 1000000 cells needs about", "--allow-large"});
+}
+
 TEST(GeoTiffDem, GdalIsBuiltIn) { EXPECT_TRUE(geotiff_supported()); }
 
 TEST(GeoTiffDem, ReadsCellSizeOriginAndValuesSouthRowFirst) {

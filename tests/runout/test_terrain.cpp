@@ -12,6 +12,7 @@
 #include "esri_ascii.hpp"
 #include "runout_world.hpp"
 #include "talus/error.hpp"
+#include "talus/memory.hpp"
 #include "terrain.hpp"
 
 namespace talus::runout {
@@ -109,6 +110,27 @@ TEST(EsriAscii, SizeMismatchIsAnErrorNamingTheLine) {
   const std::string many_rows =
       write_file("many.asc", "ncols 2\nnrows 1\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2\n3 4\n");
   expect_input_error([&] { read_esri_ascii(many_rows); }, {many_rows, "nrows"});
+}
+
+// A header that promises a huge grid is refused before the grid is allocated:
+// by the file's size when the values cannot be there, by the memory the run
+// would need when they could.
+TEST(EsriAscii, AHugeHeaderIsRefusedBeforeAllocating) {
+  const std::string path = write_file("huge.asc", "ncols 50000\nnrows 50000\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2\n3 4\n");
+  expect_input_error([&] { read_esri_ascii(path); },
+                     {"error: " + path + ": the header promises 50000 x 50000 values, but the file holds only",
+                      "size mismatch"});
+  const std::string wide = write_file("wide.asc", "ncols 3e9\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2\n");
+  expect_input_error([&] { read_esri_ascii(wide); }, {"error: " + wide + ": ncols and nrows must be at most"});
+}
+
+TEST(DemMemory, AGridNeedingMoreThanTheMachineHasIsRefusedUnlessAllowed) {
+  expect_input_error([] { require_dem_memory(1e6, 1e6, "valley.tif"); },
+                     {"error: valley.tif: a DEM of 1000000 x 1000000 cells needs about", "available", "--allow-large"});
+  EXPECT_NO_THROW(require_dem_memory(100, 100, "small.asc"));
+  talus::set_memory_check(false);
+  EXPECT_NO_THROW(require_dem_memory(1e6, 1e6, "valley.tif"));
+  talus::set_memory_check(true);
 }
 
 TEST(GridTerrain, BilinearElevationAndGradientAreExactOnAPlane) {

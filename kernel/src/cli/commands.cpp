@@ -8,11 +8,13 @@
 #include <iostream>
 
 #include "plugin_registry.hpp"
+#include "resource_estimate.hpp"
 #include "scene.hpp"
 #include "scene_schema.hpp"
 #include "schema.hpp"
 #include "simulation.hpp"
 #include "talus/error.hpp"
+#include "talus/memory.hpp"
 #include "text.hpp"
 
 namespace fs = std::filesystem;
@@ -28,7 +30,7 @@ struct Options {
   std::vector<std::string> positional;
   std::string out, restart, output_file, summary;
   int threads = 0;
-  bool quiet = false, verbose = false;
+  bool quiet = false, verbose = false, allow_large = false;
 };
 
 Options parse(const Args& args, const std::vector<std::string>& allowed) {
@@ -54,6 +56,7 @@ Options parse(const Args& args, const std::vector<std::string>& allowed) {
     else if (a == "--summary") o.summary = value();
     else if (a == "--quiet") o.quiet = true;
     else if (a == "--verbose") o.verbose = true;
+    else if (a == "--allow-large") o.allow_large = true;
     else if (a == "--threads") {
       const std::string v = value();
       try {
@@ -74,6 +77,22 @@ std::string one_scene(const Options& o, const char* command) {
 }
 
 void open_registry(PluginRegistry& registry) { registry.add_default_locations(); }
+
+// The scene, refused before anything is allocated if it needs more memory
+// than the machine has (unless --allow-large); its estimate goes to `estimate`.
+Scene sized_scene(const std::string& path, PluginRegistry& registry, const Options& o, ResourceEstimate& estimate,
+                  bool print_refused = false) {
+  Scene scene = load_scene(path, registry);
+  set_memory_check(!o.allow_large);
+  estimate = estimate_resources(scene, registry);
+  try {
+    check_resources(scene, estimate);
+  } catch (const InputError&) {
+    if (print_refused) print_estimate(std::cout, estimate);
+    throw;
+  }
+  return scene;
+}
 
 // Writes text to a file atomically, or to stdout when path is empty.
 void emit(const std::string& text, const std::string& path) {
@@ -162,9 +181,13 @@ std::string usage() {
          "\n"
          "  run [SCENE] [--out DIR] [--threads N] [--restart CHECKPOINT] [--quiet|--verbose]\n"
          "      [--summary FILE]  also write the run summary as JSON\n"
+         "      [--allow-large]   run even if the scene's estimated memory exceeds what is available\n"
          "                       run a scene (no SCENE: the default demo scene)\n"
-         "  validate SCENE       check a scene and report every problem; runs nothing\n"
-         "  plan SCENE           the resolved pipeline: stages, passes, fields, plugins loaded\n"
+         "  validate SCENE [--allow-large]\n"
+         "                       check a scene and report every problem; runs nothing\n"
+         "  plan SCENE [--allow-large]\n"
+         "                       the resolved pipeline: stages, passes, fields, plugins loaded, and the\n"
+         "                       estimate of particles, memory and steps\n"
          "  plugins              list the plugins found: kind, name, version, library\n"
          "  doc NAME             parameter table of a model (NAME or KIND/NAME, or 'scene')\n"
          "  example NAME         a JSON snippet using a model with its defaults\n"
@@ -172,18 +195,21 @@ std::string usage() {
          "  manifest LIBRARY     write LIBRARY.talus.json, the index entry of a plugin\n"
          "  --help, --version\n"
          "\n"
-         "exit codes: 0 success, 1 the run failed, 2 bad input or plugin, 130/143 stopped by SIGINT/SIGTERM\n"
+         "exit codes: 0 success, 1 the run failed, 2 bad input or plugin, or a scene too large for the memory\n"
+         "available (refused before allocating, or out of memory), 130/143 stopped by SIGINT/SIGTERM\n"
          "plugins are searched in the built-in folder, then TALUS_PLUGIN_PATH (':'-separated), then the\n"
          "scene's \"plugins\" list.\n";
 }
 
 int run(const Args& args) {
-  const Options o = parse(args, {"--out", "--threads", "--restart", "--quiet", "--verbose", "--summary"});
+  const Options o =
+      parse(args, {"--out", "--threads", "--restart", "--quiet", "--verbose", "--summary", "--allow-large"});
   if (o.positional.size() > 1) throw InputError("error: talus run takes one scene file\n" + usage());
   const std::string path = o.positional.empty() ? default_scene() : o.positional.front();
   PluginRegistry registry;
   open_registry(registry);
-  Simulation simulation(registry, load_scene(path, registry));
+  ResourceEstimate estimate;
+  Simulation simulation(registry, sized_scene(path, registry, o, estimate));
   RunOptions options;
   options.output_directory = o.out;
   options.threads = o.threads;
@@ -204,11 +230,12 @@ int run(const Args& args) {
 }
 
 int validate(const Args& args) {
-  const Options o = parse(args, {});
+  const Options o = parse(args, {"--allow-large"});
   const std::string path = one_scene(o, "validate");
   PluginRegistry registry;
   open_registry(registry);
-  Simulation simulation(registry, load_scene(path, registry));  // setup checks too; writes nothing
+  ResourceEstimate estimate;
+  Simulation simulation(registry, sized_scene(path, registry, o, estimate));  // setup checks too; writes nothing
   std::printf("%s: valid (%zu fluid particles, %zu wall particles, %zu stages)\n", path.c_str(),
               simulation.world().fluid.size(), simulation.world().boundary.size(),
               simulation.scene().values.model_names("pipeline").size());
@@ -216,12 +243,14 @@ int validate(const Args& args) {
 }
 
 int plan(const Args& args) {
-  const Options o = parse(args, {});
+  const Options o = parse(args, {"--allow-large"});
   const std::string path = one_scene(o, "plan");
   PluginRegistry registry;
   open_registry(registry);
-  Simulation simulation(registry, load_scene(path, registry));
+  ResourceEstimate estimate;
+  Simulation simulation(registry, sized_scene(path, registry, o, estimate, true));
   simulation.print_plan(std::cout);
+  print_estimate(std::cout, estimate);
   return 0;
 }
 

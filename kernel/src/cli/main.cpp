@@ -1,6 +1,8 @@
 // talus: the command-line front end of the Talus runtime.
 #include <cstdio>
 #include <exception>
+#include <new>
+#include <stdexcept>
 #include <string>
 
 #include "commands.hpp"
@@ -37,6 +39,19 @@ int main(int argc, char** argv) {
   } catch (const RunError& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 1;
+  } catch (const std::bad_alloc&) {
+    // Past the up-front estimate (or with --allow-large): still a scene too large for this machine.
+    std::fprintf(stderr,
+                 "error: talus %s: out of memory (std::bad_alloc): the scene needs more memory than this machine "
+                 "could give.\n       `talus plan SCENE` shows its estimate; coarsen dp or shrink the domain.\n",
+                 command.c_str());
+    return 2;
+  } catch (const std::length_error& e) {
+    std::fprintf(stderr,
+                 "error: talus %s: a size beyond what this machine can hold (std::length_error: %s).\n"
+                 "       `talus plan SCENE` shows its estimate; coarsen dp or shrink the domain.\n",
+                 command.c_str(), e.what());
+    return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;

@@ -3,6 +3,7 @@
 // outputs, checkpoints and signal handling without any SPH physics.
 #include <chrono>
 #include <thread>
+#include <vector>
 
 #include "talus/stage.hpp"
 #include "talus/world.hpp"
@@ -16,13 +17,16 @@ class Ballistic final : public talus::Stage {
     p.real("dt").unit("s").greater_than(0.0).default_value(1e-3).doc("time step");
     p.real("sleep").unit("s").min(0.0).default_value(0.0).doc("wall time to sleep per step (signal tests)");
     p.real("nan_at").unit("s").min(0.0).optional().doc("make particle 0's velocity NaN at this time (error tests)");
+    p.real("scratch_bytes").min(0.0).default_value(0.0).doc("bytes of scratch to allocate at setup (out-of-memory tests)");
     return p;
   }
   explicit Ballistic(const talus::ParamValues& v)
-      : dt_(v.real("dt")), sleep_(v.real("sleep")), nan_at_(v.has("nan_at") ? v.real("nan_at") : -1.0) {}
+      : dt_(v.real("dt")), sleep_(v.real("sleep")), nan_at_(v.has("nan_at") ? v.real("nan_at") : -1.0),
+        scratch_bytes_(v.real("scratch_bytes")) {}
 
   void setup(talus::World& world) override {
     world.fluid.require({"acceleration", talus::FieldType::vector, "m/s^2", true, false});
+    if (scratch_bytes_ > 0) scratch_.resize(static_cast<std::size_t>(scratch_bytes_));
   }
   double stable_time_step(const talus::World&) override { return dt_; }
   void advance(talus::World& world, double dt) override {
@@ -45,7 +49,8 @@ class Ballistic final : public talus::Stage {
   void load_state(std::string_view s) override { steps_ = std::stoull(std::string(s)); }
 
  private:
-  double dt_, sleep_, nan_at_;
+  double dt_, sleep_, nan_at_, scratch_bytes_;
+  std::vector<char> scratch_;
   unsigned long long steps_ = 0;
 };
 
