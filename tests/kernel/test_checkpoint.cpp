@@ -3,6 +3,7 @@
 // the scene (indices, counts, values): real checkpoints of small runs,
 // corrupted byte by byte and field by field.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstring>
@@ -33,8 +34,11 @@ namespace {
 
 constexpr std::size_t header = 20;  // magic and version (8), payload length (8), CRC-32 (4)
 
+// One folder per test process: ctest runs the tests of a suite side by side,
+// each in its own process, and each sets the suite up again.
 std::string scratch(const std::string& name) {
-  const fs::path dir = fs::path(TALUS_BINARY_DIR) / "tests" / "checkpoint_scratch" / name;
+  const fs::path dir =
+      fs::path(TALUS_BINARY_DIR) / "tests" / "checkpoint_scratch" / (name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir.string();
@@ -135,6 +139,7 @@ class CheckpointTest : public ::testing::Test {
     bytes_ = read_file(good_);
     bad_ = dir + "/bad.checkpoint";
   }
+  static void TearDownTestSuite() { fs::remove_all(fs::path(scene_).parent_path()); }
   std::string refused(const std::string& bytes) {
     write_file(bad_, bytes);
     return refusal(scene_, bad_);
@@ -293,6 +298,7 @@ class BlockCheckpointTest : public ::testing::Test {
     good_ = make_checkpoint(scene_, dir);
     bad_ = dir + "/bad.checkpoint";
   }
+  static void TearDownTestSuite() { fs::remove_all(fs::path(scene_).parent_path()); }
   static std::string scene_, good_, bad_;
 };
 
