@@ -63,14 +63,13 @@ Simulation::Simulation(PluginRegistry& registry, Scene scene) : registry_(regist
   world_.lo = domain.vector("min");
   world_.hi = domain.vector("max");
   for (const auto& axis : domain.strings("periodic")) world_.periodic[axis[0] - 'x'] = true;
-  for (int a = 0; a < world_.dim; ++a)
-    if (world_.periodic[a] && world_.dim == 2 && a == 2) domain.fail("periodic", "z is not an axis of a 2D domain");
   world_.gravity = s.vector("gravity");
   world_.end_time = s.object("time").real("end");
   resort_every_ = static_cast<std::uint64_t>(s.object("time").integer("resort_every"));
 
   build_materials();
   build_kernel();
+  check_periodic_axes();
   build_bodies();
   world_.refresh_material_index();
   build_stages();
@@ -124,6 +123,29 @@ void Simulation::build_kernel() {
   world_.h = kp.real("h_over_dp") * world_.dp;
   world_.kernel = KernelTable(*kernel, world_.dim, world_.h);
   models_.push_back(std::move(kernel));
+}
+
+// The SPH neighbour search (sph::NeighbourGrid) needs a periodic axis of at
+// least 2.5 kernel supports; checked once here, with the scene's pointer,
+// rather than deep in a stage's setup with neither. A writer that needs more
+// says so in its own check.
+void Simulation::check_periodic_axes() const {
+  const ParamValues& domain = scene_.values.object("domain");
+  const auto& axes = domain.strings("periodic");
+  for (std::size_t k = 0; k < axes.size(); ++k) {
+    auto fail = [&](const std::string& message) {
+      throw InputError("error: " + domain.file() + ": " + domain.pointer("periodic") + "/" + std::to_string(k) + ": " +
+                       message);
+    };
+    const int a = axes[k][0] - 'x';
+    if (a >= world_.dim) fail(axes[k] + " is not an axis of a " + std::to_string(world_.dim) + "D domain");
+    const double span = world_.hi[a] - world_.lo[a];
+    const double support = world_.h > 0.0 ? world_.kernel.support_radius() : 0.0;
+    if (support > 0.0 && !(span >= 2.5 * support))
+      fail("the domain spans " + fixed(span) + " m along " + axes[k] +
+           ", less than the 2.5 kernel supports a periodic axis needs (2.5 x " + fixed(support) +
+           " m); enlarge the domain along it or refine dp");
+  }
 }
 
 namespace {
