@@ -121,6 +121,12 @@ void Simulation::build_kernel() {
   const ParamValues& kp = s.model_params("kernel");
   auto kernel = registry_.create_as<SmoothingKernel>("kernel", kernel_name_, kp);
   world_.h = kp.real("h_over_dp") * world_.dp;
+  // The table scales by h^-(dim+2) (the Laplacian's normalisation): beyond a
+  // double's range it would hold zeros or infinities, or refuse h outright.
+  const double scale = std::pow(world_.h, world_.dim + 2);
+  if (!std::isnormal(scale) || !std::isfinite(1.0 / scale))
+    s.fail("kernel", "the smoothing length h = h_over_dp x dp = " + fixed(world_.h) + " m (dp = " + fixed(world_.dp) +
+                         " m) is beyond what a kernel table holds; use a dp between 1e-50 and 1e50 m");
   world_.kernel = KernelTable(*kernel, world_.dim, world_.h);
   models_.push_back(std::move(kernel));
 }

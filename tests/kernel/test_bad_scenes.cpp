@@ -78,4 +78,18 @@ TEST(BadScenes, DomainWhoseExtentOverflows) {
   expect_refused(refuse("overflow", s), "/domain/max", "the extent along x, max - min, overflows a double");
 }
 
+TEST(BadScenes, SphStageWithoutAKernel) {
+  json s = shipped("hydrostatic_2d");
+  s.erase("kernel");
+  s["outputs"] = json::array();
+  expect_refused(refuse("no_kernel", s), "/pipeline/0", "the wcsph stage needs a smoothing kernel");
+}
+
+TEST(BadScenes, SmoothingLengthBeyondAKernelTable) {
+  json s = shipped("hydrostatic_2d");
+  s["kernel"]["h_over_dp"] = 0.5;
+  for (auto& b : s["bodies"]) b["dp"] = 5e-324;  // h = 0.5 dp rounds to 0
+  expect_refused(refuse("bad_h", s), "/kernel", "is beyond what a kernel table holds");
+}
+
 }  // namespace
