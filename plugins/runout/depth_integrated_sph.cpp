@@ -123,7 +123,8 @@ void DepthIntegratedSph::setup(World& world) {
   // Release: thickness per particle, dropping those with none.
   Grid thickness;
   const bool from_raster = params_.has("thickness_raster");
-  if (from_raster) thickness = read_esri_ascii(params_.string("thickness_raster"), true);
+  if (from_raster)
+    thickness = params_.read_file("thickness_raster", [](const std::string& f) { return read_esri_ascii(f, true); });
   {
     auto pos = s.position();
     auto body = s.body();

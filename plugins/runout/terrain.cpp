@@ -300,11 +300,12 @@ std::unique_ptr<Terrain> make_terrain(const ParamValues& values) {
     return std::make_unique<Channel>(v.real("slope"), v.real("axis"), v.real("half_width"), v.real("bank_height"));
   if (kind == "dem") {
     const std::string& file = v.string("file");
-    if (ends_with(file, ".tif") || ends_with(file, ".tiff")) return make_grid_terrain(read_geotiff(file, true), file);
+    if (ends_with(file, ".tif") || ends_with(file, ".tiff"))
+      return v.read_file("file", [](const std::string& f) { return make_grid_terrain(read_geotiff(f, true), f); });
     if (!ends_with(file, ".asc"))
       v.fail("file", "'" + file + "' is not a DEM this build reads; allowed: .asc (ESRI ASCII grid), .tif (GeoTIFF, "
                      "with GDAL)");
-    return make_grid_terrain(read_esri_ascii(file, true), file);
+    return v.read_file("file", [](const std::string& f) { return make_grid_terrain(read_esri_ascii(f, true), f); });
   }
   values.fail("terrain", "unknown terrain '" + kind + "'");
 }

@@ -92,4 +92,19 @@ TEST(BadScenes, SmoothingLengthBeyondAKernelTable) {
   expect_refused(refuse("bad_h", s), "/kernel", "is beyond what a kernel table holds");
 }
 
+TEST(BadScenes, MeshErrorNamesTheJsonPointer) {
+  json s = shipped("hydrostatic_2d");
+  s["bodies"][0]["shape"] = {{"mesh", {{"file", "../bad.obj"}}}};
+  const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n";
+  expect_refused(refuse("mesh", s, "bad.obj", obj), "/bodies/0/shape/mesh/file",
+                 "bad.obj:4: face refers to vertex 4 but only 3 vertices are defined so far");
+}
+
+TEST(BadScenes, DemErrorNamesTheJsonPointer) {
+  json s = shipped("runout_valley");
+  s["pipeline"][0]["terrain"]["dem"]["file"] = "../bad.asc";
+  expect_refused(refuse("dem", s, "bad.asc", "ncols 120\nnrows 80\n"), "/pipeline/0/terrain/dem/file",
+                 "bad.asc: header has no");
+}
+
 }  // namespace
