@@ -279,6 +279,7 @@ void Simulation::build_writers() {
       w.every_steps = static_cast<std::uint64_t>(params[i].integer("every_steps"));
     else
       w.every = params[i].has("every") ? params[i].real("every") : world_.end_time / 50.0;
+    w.writer->check(world_);
     writers_.push_back(std::move(w));
   }
 }

@@ -71,6 +71,18 @@ TEST(BadScenes, PeriodicAxisNarrowerThanTheNeighbourSearch) {
                  "7.5e-05 m)");
 }
 
+// 2.7 supports: enough for wcsph, not for the probes' cell list, which used to
+// fail in `talus run` after the output folder was made.
+TEST(BadScenes, ProbesOnAPeriodicAxisNarrowerThanThreeSupports) {
+  json s = shipped("poiseuille_2d");
+  s["domain"]["max"][0] = 0.0002;
+  s["bodies"][0]["shape"]["box"]["max"][0] = 0.0002;
+  s["bodies"][1]["shape"]["box_walls"]["max"][0] = 0.0002;
+  s["outputs"] = json::array({{{"type", "hdf5"}}, {{"type", "probes"}, {"points", {{0.0001, 0.0005}}}}});
+  expect_refused(refuse("periodic_probes", s), "/outputs/1/points",
+                 "the probes need a periodic axis of at least 3 kernel supports");
+}
+
 TEST(BadScenes, DomainWhoseExtentOverflows) {
   json s = shipped("poiseuille_2d");
   s["domain"]["min"][0] = -1e308;
@@ -90,6 +102,18 @@ TEST(BadScenes, SmoothingLengthBeyondAKernelTable) {
   s["kernel"]["h_over_dp"] = 0.5;
   for (auto& b : s["bodies"]) b["dp"] = 5e-324;  // h = 0.5 dp rounds to 0
   expect_refused(refuse("bad_h", s), "/kernel", "is beyond what a kernel table holds");
+}
+
+TEST(BadScenes, UnknownOutputField) {
+  json s = shipped("hydrostatic_2d");
+  s["outputs"][1]["fields"] = {"velocity", "vorticity"};  // after the probes, which used to open their CSV first
+  expect_refused(refuse("fields", s), "/outputs/1/fields", "no particle field 'vorticity'");
+}
+
+TEST(BadScenes, WaveGaugeOutsideTheDomain) {
+  json s = shipped("hydrostatic_2d");
+  s["outputs"][0]["gauges"] = {{0.9, 0.1}};
+  expect_refused(refuse("gauge", s), "/outputs/0/gauges", "G1 at (0.9, 0.1) is outside the domain");
 }
 
 TEST(BadScenes, MeshErrorNamesTheJsonPointer) {
