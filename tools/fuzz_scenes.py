@@ -64,6 +64,8 @@ def arguments():
     p.add_argument("--short", action="store_true",
                    help="the ctest form: cheap scenes only, validate and plan, fixed seed")
     p.add_argument("--replay", metavar="PATH", help="check the inputs saved in PATH (a failures folder or one case)")
+    p.add_argument("--max-seconds", type=float, default=0,
+                   help="stop starting mutants after this long and summarise those done (0: no limit)")
     p.add_argument("--quiet", action="store_true", help="only the summary")
     return p.parse_args()
 
@@ -197,6 +199,8 @@ def make_mutant(args, seeds, corpus, dem, index):
 
 
 def one(args, seeds, corpus, dem, index, tmp):
+    if args.deadline and time.monotonic() > args.deadline:
+        return None
     name, data, aux, dem_bytes, notes, runs = make_mutant(args, seeds, corpus, dem, index)
     case = Case(os.path.join(tmp, "m%d" % index), name, data, aux, dem_bytes)
     commands = ["validate", "plan"] + (["run"] if runs else [])
@@ -251,10 +255,15 @@ def main():
     tally = collections.Counter()
     failures, slowest = [], []
     start = time.monotonic()
+    args.deadline = start + args.max_seconds if args.max_seconds > 0 else 0
     with tempfile.TemporaryDirectory(prefix="talus-fuzz-") as tmp, \
             concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         jobs = [pool.submit(one, args, seeds, corpus, dem, i, tmp) for i in range(args.count)]
-        for done, job in enumerate(concurrent.futures.as_completed(jobs), 1):
+        done = 0
+        for job in concurrent.futures.as_completed(jobs):
+            if job.result() is None:
+                continue  # past --max-seconds
+            done += 1
             index, name, results, problems, deferred, kept = job.result()
             tally["memory"] += deferred
             for command, (code, _, seconds) in results.items():
@@ -268,7 +277,7 @@ def main():
             if not args.quiet and done % 500 == 0:
                 print("fuzz: %d of %d mutants, %d failing, %.0f s" % (done, args.count, len(failures),
                                                                      time.monotonic() - start), flush=True)
-    print("fuzz: %d mutants of %d seed scenes, seed %d, %.0f s" % (args.count, len(seeds), args.seed,
+    print("fuzz: %d mutants of %d seed scenes, seed %d, %.0f s" % (done, len(seeds), args.seed,
                                                                   time.monotonic() - start))
     for command in ("validate", "plan", "run"):
         row = {k[1]: v for k, v in tally.items() if k[0] == command}
