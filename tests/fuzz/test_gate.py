@@ -34,6 +34,7 @@ class Gate(unittest.TestCase):
         self.assertIn("no 'error: ' line", one("run", 2, "neighbour search: a periodic axis\n"))
         self.assertIn("line without 'error: '", one("run", 2, "error: scenes/a.json: /a: x\nstray line\n"))
         self.assertIn("exit 1 from validate", one("validate", 1, "error: KernelTable: bad h\n"))
+        self.assertIn("doubled", one("validate", 2, "error: scenes/a.json: /plugins/0: error: plugin 'x'\n"))
         self.assertIn("wrote out", one("run", 2, "error: scenes/a.json: /x: bad\n", ["out"]))
         self.assertIn("sanitizer", one("validate", 0, "x.cpp:3:5: runtime error: signed integer overflow\n"))
         self.assertTrue(one("validate", 1, "error: std::bad_alloc\n").startswith(gate.DEFERRED))

@@ -131,4 +131,12 @@ TEST(BadScenes, DemErrorNamesTheJsonPointer) {
                  "bad.asc: header has no");
 }
 
+TEST(BadScenes, PluginThatCannotBeLoadedHasOneErrorPrefix) {
+  json s = shipped("hydrostatic_2d");
+  s["plugins"] = {"nowhere"};
+  const Refusal r = refuse("plugin", s);
+  expect_refused(r, "/plugins/0", "plugin '");
+  EXPECT_EQ(r.validate.find("error: ", 7), std::string::npos) << r.validate;
+}
+
 }  // namespace

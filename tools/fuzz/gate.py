@@ -8,7 +8,7 @@
   continuation (a hint) or the closing "N errors in FILE; nothing was run.";
 - exit 2: every error line names the scene file and a JSON pointer
   ("error: FILE: /..."), or a line and column for a syntax error
-  ("error: FILE:L:C: ...");
+  ("error: FILE:L:C: ..."), with one "error: " only;
 - exit 2: nothing was written (no output folder, no new file beside the scene).
 The consistency of validate, plan and run on one mutant is checked by
 `agree`: what validate accepts, plan and run accept too.
@@ -68,6 +68,9 @@ def check(command, scene, code, stderr, written):
         for l in stderr.splitlines():
             if l.startswith("error: ") and not named.match(l):
                 problems.append("error without file and JSON pointer: %s" % l[:160])
+                break
+            if l.startswith("error: ") and ": error: " in l:
+                problems.append("doubled 'error: ': %s" % l[:160])
                 break
         if written:
             problems.append("exit 2 but wrote %s" % ", ".join(sorted(written))[:200])
