@@ -253,8 +253,10 @@ class Validator {
         std::filesystem::path path = j.get<std::string>();
         if (path.is_relative()) path = std::filesystem::path(c_.base_dir) / path;
         v.text = path.lexically_normal().string();
-        if (!std::filesystem::exists(v.text)) {
-          error(p, "file not found: " + v.text);
+        // The error_code form: a name too long for the system throws otherwise.
+        std::error_code ec;
+        if (!std::filesystem::exists(v.text, ec)) {
+          error(p, ec ? "cannot look up " + describe(j) + " (" + ec.message() + ")" : "file not found: " + v.text);
           return false;
         }
         return true;

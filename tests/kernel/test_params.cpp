@@ -216,6 +216,18 @@ TEST(Validator, ParamsFromJsonThrowsEveryProblem) {
   }
 }
 
+// A file name the system cannot look up (longer than a name may be) is an
+// error at its pointer, not a filesystem_error from the validator.
+TEST(Validator, FileNameTooLongForTheSystemIsAnErrorAtItsPointer) {
+  ParamSet p{"mesh", "a file"};
+  p.path("file").doc("file");
+  const Diagnostics d = check(p, "{\"file\": \"" + std::string(5000, 'a') + "\"}");
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d.items()[0].pointer, "/file");
+  EXPECT_NE(d.items()[0].message.find("cannot look up the string \"aaaa"), std::string::npos) << d.format();
+  EXPECT_NE(d.items()[0].message.find("File name too long"), std::string::npos) << d.format();
+}
+
 // A face index is read as a wide integer first: 4294967297 must not become 1.
 TEST(Validator, FaceIndexBeyondAnIntIsRefused) {
   ParamSet p{"polyhedron", "faces"};
