@@ -30,6 +30,21 @@ inline int cells_along(double length, double cell) {
   return n >= 1.0 ? static_cast<int>(std::min(n, most)) : 1;
 }
 
+// Halves the axis with the most cells until the grid has at most 2^24 cells
+// (an Index numbers them, cell_start_ holds them). Particles far apart, such
+// as a wall spaced 1e19 m, asked for more cells than a size_t counts; coarser
+// cells than asked are still correct, only slower. An axis keeps `least`.
+inline void fit_cells(std::array<int, 3>& n, int least) {
+  constexpr double most = 1 << 24;
+  while (static_cast<double>(n[0]) * n[1] * n[2] > most) {
+    int a = 0;
+    for (int b = 1; b < 3; ++b)
+      if (n[b] > n[a]) a = b;
+    if (n[a] / 2 < least) break;
+    n[a] /= 2;
+  }
+}
+
 // floor(s) as an int within [lo, hi]; clamped before the conversion, which
 // is undefined for what an int cannot hold (a point far outside the grid).
 // NaN gives lo.
@@ -66,8 +81,11 @@ class CellList {
         throw InputError("error: the periodic domain axis " + std::string(1, static_cast<char>('x' + a)) + " spans " +
                          short_number(length) + " m, less than 3 search radii (3 x " + short_number(cell_size) +
                          " m): enlarge the domain along it or refine dp");
-      cell_[a] = length / n_[a];
-      period_[a] = periodic[a] ? length : 0.0;
+    }
+    fit_cells(n_, 3);
+    for (int a = 0; a < dim && a < 3; ++a) {
+      cell_[a] = (hi[a] - lo[a]) / n_[a];
+      period_[a] = periodic[a] ? hi[a] - lo[a] : 0.0;
     }
     inv_cell_ = {1.0 / cell_[0], 1.0 / cell_[1], 1.0 / cell_[2]};
     radius_ = cell_size;

@@ -50,8 +50,11 @@ class NeighbourGrid {
         throw InputError("error: neighbour search: the periodic axis " + std::string(1, static_cast<char>('x' + a)) +
                          " spans " + short_number(length) + " m, less than 2.5 search radii (2.5 x " +
                          short_number(radius) + " m)");
-      cell_[a] = length / n_[a];
-      period_[a] = periodic[a] ? length : 0.0;
+    }
+    fit_cells(n_, 5);
+    for (int a = 0; a < dim && a < 3; ++a) {
+      cell_[a] = (hi[a] - lo[a]) / n_[a];
+      period_[a] = periodic[a] ? hi[a] - lo[a] : 0.0;
     }
     inv_cell_ = {1.0 / cell_[0], 1.0 / cell_[1], 1.0 / cell_[2]};
     cell_start_.assign(static_cast<std::size_t>(n_[0]) * n_[1] * n_[2] + 1, 0);
