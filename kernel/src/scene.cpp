@@ -77,7 +77,9 @@ Scene load_scene(const std::string& path, PluginRegistry& registry) {
       try {
         registry.add_location(p.lexically_normal().string(), "scene");
       } catch (const InputError& e) {
-        diagnostics.error(path, "/plugins/" + std::to_string(k), e.what());
+        std::string what = e.what();  // "error: plugin ...": the report adds its own "error: FILE: POINTER: "
+        if (what.rfind("error: ", 0) == 0) what.erase(0, 7);
+        diagnostics.error(path, "/plugins/" + std::to_string(k), what);
       }
     }
   }

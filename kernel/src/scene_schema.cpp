@@ -1,6 +1,7 @@
 #include "scene_schema.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "talus/geometry.hpp"
 #include "talus/motion.hpp"
@@ -25,7 +26,13 @@ ParamSet domain_params() {
     for (int a = 0; a < 3; ++a)
       if (hi[a] < lo[a] || (a < 2 && hi[a] == lo[a])) {
         diag.error(v, "max", "must be greater than min in every component");
-        break;
+        return;
+      }
+    // Every length, cell count and period is computed from max - min.
+    for (int a = 0; a < 3; ++a)
+      if (!std::isfinite(hi[a] - lo[a])) {
+        diag.error(v, "max", std::string("the extent along ") + "xyz"[a] + ", max - min, overflows a double");
+        return;
       }
   });
   return d;

@@ -63,14 +63,13 @@ Simulation::Simulation(PluginRegistry& registry, Scene scene) : registry_(regist
   world_.lo = domain.vector("min");
   world_.hi = domain.vector("max");
   for (const auto& axis : domain.strings("periodic")) world_.periodic[axis[0] - 'x'] = true;
-  for (int a = 0; a < world_.dim; ++a)
-    if (world_.periodic[a] && world_.dim == 2 && a == 2) domain.fail("periodic", "z is not an axis of a 2D domain");
   world_.gravity = s.vector("gravity");
   world_.end_time = s.object("time").real("end");
   resort_every_ = static_cast<std::uint64_t>(s.object("time").integer("resort_every"));
 
   build_materials();
   build_kernel();
+  check_periodic_axes();
   build_bodies();
   world_.refresh_material_index();
   build_stages();
@@ -122,8 +121,37 @@ void Simulation::build_kernel() {
   const ParamValues& kp = s.model_params("kernel");
   auto kernel = registry_.create_as<SmoothingKernel>("kernel", kernel_name_, kp);
   world_.h = kp.real("h_over_dp") * world_.dp;
+  // The table scales by h^-(dim+2) (the Laplacian's normalisation): beyond a
+  // double's range it would hold zeros or infinities, or refuse h outright.
+  const double scale = std::pow(world_.h, world_.dim + 2);
+  if (!std::isnormal(scale) || !std::isfinite(1.0 / scale))
+    s.fail("kernel", "the smoothing length h = h_over_dp x dp = " + fixed(world_.h) + " m (dp = " + fixed(world_.dp) +
+                         " m) is beyond what a kernel table holds; use a dp between 1e-50 and 1e50 m");
   world_.kernel = KernelTable(*kernel, world_.dim, world_.h);
   models_.push_back(std::move(kernel));
+}
+
+// The SPH neighbour search (sph::NeighbourGrid) needs a periodic axis of at
+// least 2.5 kernel supports; checked once here, with the scene's pointer,
+// rather than deep in a stage's setup with neither. A writer that needs more
+// says so in its own check.
+void Simulation::check_periodic_axes() const {
+  const ParamValues& domain = scene_.values.object("domain");
+  const auto& axes = domain.strings("periodic");
+  for (std::size_t k = 0; k < axes.size(); ++k) {
+    auto fail = [&](const std::string& message) {
+      throw InputError("error: " + domain.file() + ": " + domain.pointer("periodic") + "/" + std::to_string(k) + ": " +
+                       message);
+    };
+    const int a = axes[k][0] - 'x';
+    if (a >= world_.dim) fail(axes[k] + " is not an axis of a " + std::to_string(world_.dim) + "D domain");
+    const double span = world_.hi[a] - world_.lo[a];
+    const double support = world_.h > 0.0 ? world_.kernel.support_radius() : 0.0;
+    if (support > 0.0 && !(span >= 2.5 * support))
+      fail("the domain spans " + fixed(span) + " m along " + axes[k] +
+           ", less than the 2.5 kernel supports a periodic axis needs (2.5 x " + fixed(support) +
+           " m); enlarge the domain along it or refine dp");
+  }
 }
 
 namespace {
@@ -251,6 +279,7 @@ void Simulation::build_writers() {
       w.every_steps = static_cast<std::uint64_t>(params[i].integer("every_steps"));
     else
       w.every = params[i].has("every") ? params[i].real("every") : world_.end_time / 50.0;
+    w.writer->check(world_);
     writers_.push_back(std::move(w));
   }
 }

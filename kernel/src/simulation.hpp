@@ -66,6 +66,7 @@ class TALUS_API Simulation {
  private:
   void build_materials();
   void build_kernel();
+  void check_periodic_axes() const;
   void build_bodies();
   void build_stages();
   void build_writers();

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <set>
 #include <vector>
 
@@ -207,8 +208,17 @@ class Validator {
           error(p, "expected an integer, got " + describe(j));
           return false;
         }
-        v.integer = static_cast<std::int64_t>(x);
-        return in_range(s, x, p);
+        // Beyond 2^63 the conversion to int64 is undefined; no count or index is that large.
+        if (!(std::abs(x) < 0x1p63)) {
+          error(p, text::number(x) + " is out of range; an integer here must lie within +-9.2e18");
+          return false;
+        }
+        if (!in_range(s, x, p)) return false;
+        // Exactly as written when the text is an integer (a double keeps only 53 bits).
+        v.integer = j.is_number_unsigned()  ? static_cast<std::int64_t>(j.get<std::uint64_t>())
+                    : j.is_number_integer() ? j.get<std::int64_t>()
+                                            : static_cast<std::int64_t>(x);
+        return true;
       }
       case ParamType::boolean:
         if (!j.is_boolean()) {
@@ -243,8 +253,10 @@ class Validator {
         std::filesystem::path path = j.get<std::string>();
         if (path.is_relative()) path = std::filesystem::path(c_.base_dir) / path;
         v.text = path.lexically_normal().string();
-        if (!std::filesystem::exists(v.text)) {
-          error(p, "file not found: " + v.text);
+        // The error_code form: a name too long for the system throws otherwise.
+        std::error_code ec;
+        if (!std::filesystem::exists(v.text, ec)) {
+          error(p, ec ? "cannot look up " + describe(j) + " (" + ec.message() + ")" : "file not found: " + v.text);
           return false;
         }
         return true;
@@ -303,10 +315,16 @@ class Validator {
           std::vector<int> list;
           ok = j[k].is_array();
           for (std::size_t m = 0; ok && m < j[k].size(); ++m) {
-            ok = j[k][m].is_number_integer() && j[k][m].get<long long>() >= 0;
-            if (ok) list.push_back(j[k][m].get<int>());
+            // Read as a wide integer first: get<int>() would take 4294967297 for 1.
+            const json& index = j[k][m];
+            ok = index.is_number_unsigned() ? index.get<std::uint64_t>() <= std::numeric_limits<int>::max()
+                                            : index.is_number_integer() && index.get<std::int64_t>() >= 0 &&
+                                                  index.get<std::int64_t>() <= std::numeric_limits<int>::max();
+            if (ok) list.push_back(static_cast<int>(index.get<std::int64_t>()));
           }
-          if (!ok) error(p + "/" + std::to_string(k), "expected an array of vertex indices (integers >= 0)");
+          if (!ok)
+            error(p + "/" + std::to_string(k), "expected an array of vertex indices (integers from 0 to " +
+                                                   std::to_string(std::numeric_limits<int>::max()) + ")");
           v.indices.push_back(std::move(list));
         }
         if (!j.is_array()) error(p, "expected an array of arrays of vertex indices, got " + describe(j));

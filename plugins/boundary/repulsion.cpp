@@ -51,7 +51,7 @@ void Repulsion::setup(World& world, std::span<const int> bodies) {
         if (!is_open(std::string("+") + axes[a])) planes_.push_back({hi, -n, r0});
       }
     } else if (alt == "mesh") {
-      Mesh m{load_mesh(s.string("file")), {}, {}, r0};
+      Mesh m{s.read_file("file", [](const std::string& f) { return load_mesh(f); }), {}, {}, r0};
       const double scale = s.real("scale");
       const Vec3 offset = s.vector("offset");
       for (Vec3& p : m.mesh.vertices) p = p * scale + offset;

@@ -24,7 +24,7 @@ BlockGeometry block_geometry(const ParamValues& body, const std::string& name) {
     v = s.vectors("vertices");
     f = s.index_lists("faces");
   } else if (kind == "mesh") {
-    const TriangleMesh mesh = load_mesh(s.string("file"));
+    const TriangleMesh mesh = s.read_file("file", [](const std::string& f) { return load_mesh(f); });
     const double scale = s.has("scale") ? s.real("scale") : 1.0;
     const Vec3 offset = s.has("offset") ? s.vector("offset") : Vec3{};
     for (const auto& p : mesh.vertices) v.push_back(p * scale + offset);

@@ -140,11 +140,12 @@ void DepthIntegratedSph::setup(World& world) {
   // Release: thickness per particle, dropping those with none.
   Grid thickness, resistance;
   const bool from_raster = params_.has("thickness_raster");
-  if (from_raster) thickness = read_esri_ascii(params_.string("thickness_raster"), true);
+  const auto read_raster = [](const std::string& f) { return read_esri_ascii(f, true); };
+  if (from_raster) thickness = params_.read_file("thickness_raster", read_raster);
   const bool vertical = params_.string("thickness_measured") == "vertical";
   const bool resists = params_.has("basal_shear_raster");
   if (resists) {
-    resistance = read_esri_ascii(params_.string("basal_shear_raster"), true);
+    resistance = params_.read_file("basal_shear_raster", read_raster);
     s.require({"initial_basal_shear", FieldType::scalar, "Pa", true, true});
   }
   {

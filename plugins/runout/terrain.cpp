@@ -199,6 +199,9 @@ class GridTerrain final : public Terrain {
   // The span holding (x, y), in [-1, n - 1] per axis (the ghosts reach half a
   // cell beyond the outer cell centres and more; further out, the edge span).
   Span locate(double x, double y) const {
+    // A non-finite point (a particle gone NaN within the step) has no span;
+    // floor() of it would not fit the int.
+    if (!std::isfinite(x) || !std::isfinite(y)) return {-2, -2, 0.0, 0.0};
     const double u = std::clamp((x - z_.x0) / z_.cell, -1.0, static_cast<double>(z_.ncols));
     const double v = std::clamp((y - z_.y0) / z_.cell, -1.0, static_cast<double>(z_.nrows));
     const int i = std::min(static_cast<int>(std::floor(u)), z_.ncols - 1);
@@ -206,6 +209,7 @@ class GridTerrain final : public Terrain {
     return {i, j, u - i, v - j};
   }
   bool span_ok(const Span& s) const {
+    if (s.i < -1) return false;
     return span_ok_[static_cast<std::size_t>(s.j + 1) * (z_.ncols + 1) + (s.i + 1)] != 0;
   }
   // Elevation and, up to `order`, its derivatives.
@@ -300,11 +304,12 @@ std::unique_ptr<Terrain> make_terrain(const ParamValues& values) {
     return std::make_unique<Channel>(v.real("slope"), v.real("axis"), v.real("half_width"), v.real("bank_height"));
   if (kind == "dem") {
     const std::string& file = v.string("file");
-    if (ends_with(file, ".tif") || ends_with(file, ".tiff")) return make_grid_terrain(read_geotiff(file, true), file);
+    if (ends_with(file, ".tif") || ends_with(file, ".tiff"))
+      return v.read_file("file", [](const std::string& f) { return make_grid_terrain(read_geotiff(f, true), f); });
     if (!ends_with(file, ".asc"))
       v.fail("file", "'" + file + "' is not a DEM this build reads; allowed: .asc (ESRI ASCII grid), .tif (GeoTIFF, "
                      "with GDAL)");
-    return make_grid_terrain(read_esri_ascii(file, true), file);
+    return v.read_file("file", [](const std::string& f) { return make_grid_terrain(read_esri_ascii(f, true), f); });
   }
   values.fail("terrain", "unknown terrain '" + kind + "'");
 }

@@ -183,7 +183,7 @@ void StrengthReduction::setup(World& world) {
   if (handoff_) {
     const ParamValues& h = params_.object("handoff");
     if (h.has("dem")) {
-      dem_ = runout::read_esri_ascii(h.string("dem"));
+      dem_ = h.read_file("dem", [](const std::string& f) { return runout::read_esri_ascii(f); });
       has_dem_ = true;
       if (handoff_cell_ > 0.0 && std::abs(handoff_cell_ - dem_.cell) > 1e-9 * dem_.cell)
         h.fail("cell", "the rasters take the DEM's cell " + number("%g", dem_.cell) + " m; leave out cell or "
@@ -192,7 +192,7 @@ void StrengthReduction::setup(World& world) {
     } else if (!(handoff_cell_ > 0.0)) {
       h.fail("cell", "without a dem the hand-off needs a raster cell (m)");
     }
-    runout_template_ = read_runout_template(h.string("runout_scene"));
+    runout_template_ = h.read_file("runout_scene", read_runout_template);
   }
   dda_->setup(world);
   dda_->set_local_damping(damping_);

@@ -96,7 +96,7 @@ WcsphStage::WcsphStage(const ParamValues& v)
 
 void WcsphStage::setup(World& world) {
   h_ = world.kernel.h();
-  if (!(h_ > 0.0)) throw InputError("error: wcsph: the scene has no SPH kernel; add \"kernel\": {\"type\": ...}");
+  if (!(h_ > 0.0)) params_.fail("", "the wcsph stage needs a smoothing kernel: add \"kernel\": {\"type\": ...} to the scene");
   if (viscosity_ == sph::ViscosityModel::laplacian && !world.kernel.has_laplacian())
     params_.fail("viscosity", "'laplacian' needs a kernel with a Laplacian; allowed with kernel 'muller'");
   eta2_ = 0.01 * h_ * h_;
@@ -118,7 +118,7 @@ void WcsphStage::setup(World& world) {
   std::vector<char> used(nm, 0);
   for (std::int32_t m : s.material()) {
     if (m < 0 || static_cast<std::size_t>(m) >= nm)
-      throw InputError("error: wcsph: a fluid particle has no material; every fluid body needs \"material\"");
+      params_.fail("", "a fluid particle has no material; every fluid body needs \"material\"");
     used[m] = 1;
   }
   fluid_materials_.clear();

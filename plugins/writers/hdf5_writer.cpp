@@ -67,6 +67,9 @@ void Hdf5Writer::start(Output& out, const std::string& name, const char* store, 
   out.xdmf_path = xdmf_ ? join_path(context_.directory, with_extension(name, ".xmf")) : std::string();
 }
 
+// An unknown field in the list is refused before the run writes anything.
+void Hdf5Writer::check(const World& world) const { select_fields(world.fluid, params_, true); }
+
 void Hdf5Writer::open(const OutputContext& context, const World& world) {
   context_ = context;
   check_writable_directory(context.directory);

@@ -24,6 +24,7 @@ class Hdf5Writer final : public Writer {
   static ParamSet describe();
   explicit Hdf5Writer(const ParamValues& params);
 
+  void check(const World& world) const override;
   void open(const OutputContext& context, const World& world) override;
   void write(const World& world) override;
   void close(const World& world) override;

@@ -300,8 +300,27 @@ std::size_t ProbesWriter::resume_bytes(const std::string& header, std::uint64_t 
   return header_seen ? kept : 0;
 }
 
+// A fresh writer from the same parameters does the work of open() short of
+// the file, so the check leaves this one as it was.
+void ProbesWriter::check(const World& world) const { ProbesWriter(params_).prepare(world); }
+
 void ProbesWriter::open(const OutputContext& context, const World& world) {
   check_writable_directory(context.directory);
+  prepare(world);
+  path_ =
+      join_path(context.directory, params_.has("file") ? params_.string("file") : context.scene_name + "_probes.csv");
+  const std::string header = join(names_, ",");
+  std::uint64_t last_kept_step = 0;
+  bool kept_rows = false;
+  const std::size_t keep = context.resume ? resume_bytes(header, world.step, last_kept_step, kept_rows) : 0;
+  file_.open(path_, keep);
+  if (keep == 0) file_.append(comment_lines(context, world) + header + "\n");
+  // After a restart the host may write the checkpoint's state again.
+  have_last_step_ = kept_rows && last_kept_step == world.step;
+  last_step_ = last_kept_step;
+}
+
+void ProbesWriter::prepare(const World& world) {
   vertical_ = world.dim - 1;
   wall_bodies_.clear();
   if (given_strings(params_, "wall_forces")) {
@@ -341,24 +360,20 @@ void ProbesWriter::open(const OutputContext& context, const World& world) {
     for (const auto& g : gauges_)
       if (!inside(g.at, true))
         params_.fail("gauges", g.name + " at " + point_text(g.at, world.dim) + " is outside the domain");
+    // The sampler's cell list needs three cells of one kernel support along a periodic axis.
+    const double support = world.kernel.support_radius();
+    for (int a = 0; a < world.dim; ++a)
+      if (world.periodic[a] && cells_along(world.hi[a] - world.lo[a], support) < 3)
+        params_.fail(key, std::string("the probes need a periodic axis of at least 3 kernel supports; the domain "
+                                      "spans ") + format_real(world.hi[a] - world.lo[a]) + " m along " + kAxis[a] +
+                              " (3 x " + format_real(support) + " m): enlarge it, refine dp or drop the probes");
     sampler_.configure(world.dim, world.lo, world.hi, world.periodic, world.kernel);
     if (gauge_step_ <= 0.0) gauge_step_ = world.dp > 0.0 ? 0.25 * world.dp : 0.25 * world.kernel.h();
   }
   select_sensor_particles(world);
   resolve_columns(world);
-
-  path_ =
-      join_path(context.directory, params_.has("file") ? params_.string("file") : context.scene_name + "_probes.csv");
-  const std::string header = join(names_, ",");
-  std::uint64_t last_kept_step = 0;
-  bool kept_rows = false;
-  const std::size_t keep = context.resume ? resume_bytes(header, world.step, last_kept_step, kept_rows) : 0;
-  file_.open(path_, keep);
-  if (keep == 0) file_.append(comment_lines(context, world) + header + "\n");
-  // After a restart the host may write the checkpoint's state again.
-  have_last_step_ = kept_rows && last_kept_step == world.step;
-  last_step_ = last_kept_step;
 }
+
 
 double ProbesWriter::integral(Quantity q, const World& world) const {
   const ParticleStore& s = world.fluid;

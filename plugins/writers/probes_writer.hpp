@@ -38,6 +38,7 @@ class ProbesWriter final : public Writer {
   static ParamSet describe();
   explicit ProbesWriter(const ParamValues& params);
 
+  void check(const World& world) const override;
   void open(const OutputContext& context, const World& world) override;
   void write(const World& world) override;
   void close(const World& world) override;
@@ -65,6 +66,9 @@ class ProbesWriter final : public Writer {
     double area = 0.0;              // m^2 (m in 2D): surface-layer particles times dp^(dim-1)
   };
 
+  // Everything open() does short of the file: resolves bodies, sensors and
+  // columns against the world; throws InputError on what does not fit.
+  void prepare(const World& world);
   void resolve_columns(const World& world);
   std::string comment_lines(const OutputContext& context, const World& world) const;
   // Bytes of an existing file to keep on resume (comments, header, rows up to

@@ -49,6 +49,9 @@ void VtuWriter::start(Series& series, const std::string& prefix, const World& wo
     if (e.time <= world.time) series.entries.push_back(std::move(e));
 }
 
+// An unknown field in the list is refused before the run writes anything.
+void VtuWriter::check(const World& world) const { select_fields(world.fluid, params_, true); }
+
 void VtuWriter::open(const OutputContext& context, const World& world) {
   directory_ = context.directory;
   check_writable_directory(directory_);

@@ -21,6 +21,7 @@ class VtuWriter final : public Writer {
   static ParamSet describe();
   explicit VtuWriter(const ParamValues& params);
 
+  void check(const World& world) const override;
   void open(const OutputContext& context, const World& world) override;
   void write(const World& world) override;
   std::vector<std::string> files() const override;

@@ -77,6 +77,19 @@ TEST(CellList, OrderIsAPermutationSortedByCell) {
   for (Index i = 0; i < 100; ++i) EXPECT_EQ(order[i], i);
 }
 
+// An extent of 2e19 m over 0.1 m cells: coarsened to a grid that fits, not a
+// wrapped cell count and writes past the end.
+TEST(CellList, HugeExtentIsCoarsenedNotOverflowed) {
+  const std::vector<Vec3> pos = {{-1e19, -1e19, -1e19}, {1e19, 1e19, 1e19}, {0, 0, 0}, {0.05, 0, 0}};
+  CellList cells;
+  cells.configure(3, pos[0], pos[1], 0.1);
+  cells.build(pos);
+  std::vector<Index> found;
+  cells.for_each_neighbour(pos[2], pos, 0.1, [&](Index j, const Vec3&, double) { found.push_back(j); });
+  std::sort(found.begin(), found.end());
+  EXPECT_EQ(found, (std::vector<Index>{2, 3}));
+}
+
 TEST(CellList, RejectsAPeriodicAxisShorterThanThreeCells) {
   CellList cells;
   EXPECT_THROW(cells.configure(2, {0, 0, 0}, {0.5, 1, 0}, 0.2, {true, false, false}), InputError);

@@ -216,5 +216,48 @@ TEST(Validator, ParamsFromJsonThrowsEveryProblem) {
   }
 }
 
+// A file name the system cannot look up (longer than a name may be) is an
+// error at its pointer, not a filesystem_error from the validator.
+TEST(Validator, FileNameTooLongForTheSystemIsAnErrorAtItsPointer) {
+  ParamSet p{"mesh", "a file"};
+  p.path("file").doc("file");
+  const Diagnostics d = check(p, "{\"file\": \"" + std::string(5000, 'a') + "\"}");
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d.items()[0].pointer, "/file");
+  EXPECT_NE(d.items()[0].message.find("cannot look up the string \"aaaa"), std::string::npos) << d.format();
+  EXPECT_NE(d.items()[0].message.find("File name too long"), std::string::npos) << d.format();
+}
+
+// A face index is read as a wide integer first: 4294967297 must not become 1.
+TEST(Validator, FaceIndexBeyondAnIntIsRefused) {
+  ParamSet p{"polyhedron", "faces"};
+  p.index_lists("faces").doc("faces");
+  for (const char* bad : {"4294967297", "2147483648", "-1", "18446744073709551615"}) {
+    const Diagnostics d = check(p, std::string(R"({"faces": [[0, 1, 2], [0, 1, )") + bad + "]]}");
+    ASSERT_EQ(d.size(), 1u) << bad;
+    EXPECT_EQ(d.items()[0].pointer, "/faces/1");
+    EXPECT_EQ(d.items()[0].message, "expected an array of vertex indices (integers from 0 to 2147483647)");
+  }
+  ParamValues v;
+  EXPECT_TRUE(check(p, R"({"faces": [[0, 1, 2147483647]]})", &v).empty());
+  EXPECT_EQ(v.index_lists("faces")[0][2], 2147483647);
+}
+
+// An integer beyond int64 is refused (its conversion would be undefined),
+// and one beyond 2^53 is read exactly, not through a double.
+TEST(Validator, IntegersBeyondInt64AreRefusedAndLargeOnesReadExactly) {
+  ParamSet p{"time", "counts"};
+  p.integer("steps").min(1).doc("count");
+  for (const char* big : {"1e19", "9223372036854775808", "1e308", "-1e19"}) {
+    const Diagnostics d = check(p, std::string(R"({"steps": )") + big + "}");
+    ASSERT_EQ(d.size(), 1u) << big;
+    EXPECT_EQ(d.items()[0].pointer, "/steps");
+    EXPECT_NE(d.items()[0].message.find("out of range"), std::string::npos) << d.format();
+  }
+  ParamValues v;
+  EXPECT_TRUE(check(p, R"({"steps": 9007199254740993})", &v).empty());
+  EXPECT_EQ(v.integer("steps"), 9007199254740993);
+}
+
 }  // namespace
 }  // namespace talus

@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "depth_integrated_sph.hpp"
 #include "esri_ascii.hpp"
@@ -215,6 +217,23 @@ TEST(GridTerrain, NoDataCellLeavesTheSurfaceUndefinedAroundIt) {
   // Well away from it (beyond two cells), defined and still the plane.
   auto full = make_grid_terrain(read_esri_ascii(write_file("no_hole_dem.asc", plane_asc()), true), "no_hole_dem.asc");
   EXPECT_TRUE(full->defined(15.0, 23.0));
+}
+
+// A particle gone non-finite within a step is sampled before the host stops
+// the run: the surface is undefined there (NaN), not an index out of bounds.
+TEST(GridTerrain, NonFinitePointHasNoSurface) {
+  auto t = make_grid_terrain(read_esri_ascii(write_file("nan_point.asc", plane_asc()), true), "nan_point.asc");
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  for (const Vec3 p : {Vec3{nan, 1.0, 0.0}, Vec3{1.0, nan, 0.0}, Vec3{inf, -inf, 0.0}}) {
+    EXPECT_FALSE(t->defined(p.x, p.y));
+    EXPECT_TRUE(std::isnan(t->elevation(p.x, p.y)));
+    std::vector<Vec3> pos(5000, p);  // enough for the parallel path
+    std::vector<double> z(pos.size());
+    std::vector<Vec3> g(pos.size());
+    std::vector<Hessian> h(pos.size());
+    t->sample(pos, z.data(), g.data(), h.data());
+    EXPECT_TRUE(std::isnan(z.back()));
+  }
 }
 
 TEST(StageSetup, RasterPrefixOutsideTheOutputFolderIsRefused) {

@@ -71,6 +71,20 @@ TEST(NeighbourGrid, PeriodicAxes) {
   compare_with_brute_force(3, {false, false, true}, false, 7);
 }
 
+// Wall particles 1e19 m apart (a fuzzed dp) asked for more cells than a
+// size_t counts: the product wrapped, the grid was too small and build()
+// wrote past it. The grid is coarsened instead, and still finds neighbours.
+TEST(NeighbourGrid, HugeExtentIsCoarsenedNotOverflowed) {
+  const std::vector<Vec3> pos = {{-1e19, -1e19, -1e19}, {1e19, 1e19, 1e19}, {0, 0, 0}, {0.05, 0, 0}};
+  talus::sph::NeighbourGrid grid;
+  grid.configure(3, pos[0], pos[1], 0.1);
+  grid.build(pos);
+  std::vector<Index> found;
+  grid.for_each_neighbour(pos[2], pos, 0.1, [&](Index j, const Vec3&, double) { found.push_back(j); });
+  std::sort(found.begin(), found.end());
+  EXPECT_EQ(found, (std::vector<Index>{2, 3}));
+}
+
 TEST(NeighbourGrid, RejectsTooShortPeriodicAxis) {
   talus::sph::NeighbourGrid grid;
   EXPECT_THROW(grid.configure(2, {0, 0, 0}, {0.2, 1, 0}, 0.1, {true, false, false}), talus::InputError);

@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <span>
 #include <string>
 #include <vector>
@@ -19,6 +20,45 @@
 #include "talus/vec3.hpp"
 
 namespace talus {
+
+// Cells of at least `cell` along an axis of `length`: floor(length / cell),
+// at least 1, and capped so that the conversion to int stays defined (a
+// coarser binning than asked is still correct, only slower).
+inline int cells_along(double length, double cell) {
+  const double n = std::floor(length / cell);
+  constexpr double most = 1 << 24;
+  return n >= 1.0 ? static_cast<int>(std::min(n, most)) : 1;
+}
+
+// Halves the axis with the most cells until the grid has at most 2^24 cells
+// (an Index numbers them, cell_start_ holds them). Particles far apart, such
+// as a wall spaced 1e19 m, asked for more cells than a size_t counts; coarser
+// cells than asked are still correct, only slower. An axis keeps `least`.
+inline void fit_cells(std::array<int, 3>& n, int least) {
+  constexpr double most = 1 << 24;
+  while (static_cast<double>(n[0]) * n[1] * n[2] > most) {
+    int a = 0;
+    for (int b = 1; b < 3; ++b)
+      if (n[b] > n[a]) a = b;
+    if (n[a] / 2 < least) break;
+    n[a] /= 2;
+  }
+}
+
+// floor(s) as an int within [lo, hi]; clamped before the conversion, which
+// is undefined for what an int cannot hold (a point far outside the grid).
+// NaN gives lo.
+inline int floor_within(double s, int lo, int hi) {
+  const double k = std::floor(s);
+  return k > lo ? (k < hi ? static_cast<int>(k) : hi) : lo;
+}
+
+// A length for a message: 4 significant digits (std::to_string prints 1e308 with 309).
+inline std::string short_number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", v);
+  return text;
+}
 
 class CellList {
  public:
@@ -36,13 +76,16 @@ class CellList {
         period_[a] = 0.0;
         continue;
       }
-      n_[a] = std::max(1, static_cast<int>(std::floor(length / cell_size)));
+      n_[a] = cells_along(length, cell_size);
       if (periodic[a] && n_[a] < 3)
         throw InputError("error: the periodic domain axis " + std::string(1, static_cast<char>('x' + a)) + " spans " +
-                         std::to_string(length) + " m, less than 3 search radii (3 x " + std::to_string(cell_size) +
+                         short_number(length) + " m, less than 3 search radii (3 x " + short_number(cell_size) +
                          " m): enlarge the domain along it or refine dp");
-      cell_[a] = length / n_[a];
-      period_[a] = periodic[a] ? length : 0.0;
+    }
+    fit_cells(n_, 3);
+    for (int a = 0; a < dim && a < 3; ++a) {
+      cell_[a] = (hi[a] - lo[a]) / n_[a];
+      period_[a] = periodic[a] ? hi[a] - lo[a] : 0.0;
     }
     inv_cell_ = {1.0 / cell_[0], 1.0 / cell_[1], 1.0 / cell_[2]};
     radius_ = cell_size;
@@ -113,8 +156,7 @@ class CellList {
  private:
   int axis_cell(double v, int a) const {
     if (a >= dim_) return 0;
-    int k = static_cast<int>(std::floor((v - lo_[a]) * inv_cell_[a]));
-    return std::clamp(k, 0, n_[a] - 1);
+    return floor_within((v - lo_[a]) * inv_cell_[a], 0, n_[a] - 1);
   }
   Index cell_index(const Vec3& p) const {
     return static_cast<Index>((static_cast<std::size_t>(axis_cell(p.z, 2)) * n_[1] + axis_cell(p.y, 1)) * n_[0] +

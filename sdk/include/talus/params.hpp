@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "talus/config.hpp"
+#include "talus/error.hpp"
 #include "talus/vec3.hpp"
 
 namespace talus {
@@ -207,6 +208,20 @@ class TALUS_API ParamValues {
 
   // Throws InputError "FILE: POINTER/NAME: message" (for checks at setup time).
   [[noreturn]] void fail(std::string_view name, std::string_view message) const;
+
+  // Reads the file that path parameter `name` names, with read(path). A
+  // reader's InputError names only that file ("error: mesh.obj:3: ..."); it
+  // is rethrown with the scene file and this parameter's JSON pointer first.
+  template <class Read>
+  decltype(auto) read_file(std::string_view name, Read&& read) const {
+    try {
+      return read(string(name));
+    } catch (const InputError& e) {
+      std::string_view what = e.what();
+      if (what.starts_with("error: ")) what.remove_prefix(7);
+      fail(name, what);
+    }
+  }
 
   // Used by the validator.
   void set(std::string name, ParamValue value);

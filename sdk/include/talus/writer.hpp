@@ -27,6 +27,12 @@ class TALUS_API Writer : public Model {
  public:
   ~Writer() override;
 
+  // Checks the parameters against the set-up world (fields that exist, points
+  // inside the domain) and throws InputError naming the JSON pointer. The
+  // host calls it while it builds the run, so `talus validate` refuses what
+  // open() would and nothing is written for a scene that cannot run.
+  virtual void check(const World& /*world*/) const {}
+  // Called once check() passed, in the existing output folder.
   virtual void open(const OutputContext& context, const World& world) = 0;
   virtual void write(const World& world) = 0;  // one frame at world.time
   virtual void close(const World& /*world*/) {}

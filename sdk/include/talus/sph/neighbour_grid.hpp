@@ -18,8 +18,10 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
+#include "talus/cell_list.hpp"  // cells_along, short_number
 #include "talus/config.hpp"
 #include "talus/error.hpp"
 #include "talus/vec3.hpp"
@@ -43,11 +45,16 @@ class NeighbourGrid {
         continue;
       }
       const double length = hi[a] - lo[a];
-      n_[a] = std::max(1, static_cast<int>(std::floor(2.0 * length / radius)));
+      n_[a] = cells_along(2.0 * length, radius);
       if (periodic[a] && n_[a] < 5)
-        throw InputError("neighbour search: a periodic axis must span at least 2.5 search radii");
-      cell_[a] = length / n_[a];
-      period_[a] = periodic[a] ? length : 0.0;
+        throw InputError("error: neighbour search: the periodic axis " + std::string(1, static_cast<char>('x' + a)) +
+                         " spans " + short_number(length) + " m, less than 2.5 search radii (2.5 x " +
+                         short_number(radius) + " m)");
+    }
+    fit_cells(n_, 5);
+    for (int a = 0; a < dim && a < 3; ++a) {
+      cell_[a] = (hi[a] - lo[a]) / n_[a];
+      period_[a] = periodic[a] ? hi[a] - lo[a] : 0.0;
     }
     inv_cell_ = {1.0 / cell_[0], 1.0 / cell_[1], 1.0 / cell_[2]};
     cell_start_.assign(static_cast<std::size_t>(n_[0]) * n_[1] * n_[2] + 1, 0);
@@ -110,10 +117,8 @@ class NeighbourGrid {
         if (rest <= 0.0) continue;
         // x-range of cells this row can contribute.
         const double w = std::sqrt(rest);
-        int x0 = static_cast<int>(std::floor((x.x - w - lo_.x) * inv_cell_[0]));
-        int x1 = static_cast<int>(std::floor((x.x + w - lo_.x) * inv_cell_[0]));
-        x0 = std::max(x0, c[0] - reach);
-        x1 = std::min(x1, c[0] + reach);
+        int x0 = floor_within((x.x - w - lo_.x) * inv_cell_[0], c[0] - reach, c[0] + reach);
+        int x1 = floor_within((x.x + w - lo_.x) * inv_cell_[0], c[0] - reach, c[0] + reach);
         const std::size_t row = (static_cast<std::size_t>(cz) * n_[1] + cy) * n_[0];
         if (!periodic_[0]) {
           // Points outside the grid sit in its edge cells: keep those in range.
@@ -201,8 +206,7 @@ class NeighbourGrid {
   }
   int axis_cell(double v, int a) const {
     if (a >= dim_) return 0;
-    const int k = static_cast<int>(std::floor((v - lo_[a]) * inv_cell_[a]));
-    return std::clamp(k, 0, n_[a] - 1);
+    return floor_within((v - lo_[a]) * inv_cell_[a], 0, n_[a] - 1);
   }
   Index cell_index(const Vec3& p) const {
     return static_cast<Index>((static_cast<std::size_t>(axis_cell(p.z, 2)) * n_[1] + axis_cell(p.y, 1)) * n_[0] +
