@@ -17,6 +17,6 @@ using Index = std::uint32_t;
 
 // Bump whenever a public SDK type changes layout or meaning. A plugin built
 // for another value is refused at load time.
-inline constexpr int sdk_abi_version = 2;
+inline constexpr int sdk_abi_version = 3;
 
 }  // namespace talus
