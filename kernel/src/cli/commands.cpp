@@ -73,7 +73,29 @@ std::string one_scene(const Options& o, const char* command) {
   return o.positional.front();
 }
 
-void open_registry(PluginRegistry& registry) { registry.add_default_locations(); }
+// Refused plugins are warnings until a scene needs one of their models.
+void print_warnings(const PluginRegistry& registry, std::size_t from) {
+  for (std::size_t k = from; k < registry.warnings().size(); ++k)
+    std::fprintf(stderr, "%s\n", registry.warnings()[k].c_str());
+}
+
+void open_registry(PluginRegistry& registry) {
+  registry.add_default_locations();
+  print_warnings(registry, 0);
+}
+
+// load_scene, and the warnings of the plugins the scene's own list added.
+Scene scene_of(const std::string& path, PluginRegistry& registry) {
+  const std::size_t before = registry.warnings().size();
+  try {
+    Scene scene = load_scene(path, registry);
+    print_warnings(registry, before);
+    return scene;
+  } catch (...) {
+    print_warnings(registry, before);
+    throw;
+  }
+}
 
 // Writes text to a file atomically, or to stdout when path is empty.
 void emit(const std::string& text, const std::string& path) {
@@ -183,7 +205,7 @@ int run(const Args& args) {
   const std::string path = o.positional.empty() ? default_scene() : o.positional.front();
   PluginRegistry registry;
   open_registry(registry);
-  Simulation simulation(registry, load_scene(path, registry));
+  Simulation simulation(registry, scene_of(path, registry));
   RunOptions options;
   options.output_directory = o.out;
   options.threads = o.threads;
@@ -208,7 +230,7 @@ int validate(const Args& args) {
   const std::string path = one_scene(o, "validate");
   PluginRegistry registry;
   open_registry(registry);
-  Simulation simulation(registry, load_scene(path, registry));  // setup checks too; writes nothing
+  Simulation simulation(registry, scene_of(path, registry));  // setup checks too; writes nothing
   std::printf("%s: valid (%zu fluid particles, %zu wall particles, %zu stages)\n", path.c_str(),
               simulation.world().fluid.size(), simulation.world().boundary.size(),
               simulation.scene().values.model_names("pipeline").size());
@@ -220,7 +242,7 @@ int plan(const Args& args) {
   const std::string path = one_scene(o, "plan");
   PluginRegistry registry;
   open_registry(registry);
-  Simulation simulation(registry, load_scene(path, registry));
+  Simulation simulation(registry, scene_of(path, registry));
   simulation.print_plan(std::cout);
   return 0;
 }
@@ -244,8 +266,11 @@ int plugins(const Args& args) {
                   registry.libraries()[m.library].plugin_version.c_str(),
                   fs::path(registry.libraries()[m.library].path).filename().c_str());
   }
+  std::size_t refused = 0;
+  for (const auto& l : registry.libraries()) refused += l.refused.empty() ? 0 : 1;
   std::printf("\n%zu models in %zu libraries; `talus doc NAME` shows a model's parameters.\n", registry.models().size(),
-              registry.libraries().size());
+              registry.libraries().size() - refused);
+  if (refused) std::printf("%zu libraries skipped (see the warnings above).\n", refused);
   return 0;
 }
 
