@@ -10,6 +10,18 @@
 # include path: the hash of the SDK headers as that include path resolves them
 # and the layout of the exchanged types (talus/abi_layout.hpp). The host
 # compares both with its own before it uses the plugin.
+#
+# With no build type chosen, a single-configuration project builds optimised
+# (Release): a plugin built by the tutorial's commands must run as fast as a
+# built-in one.
+
+function(_talus_default_build_type)
+  get_property(_multi GLOBAL PROPERTY GENERATOR_IS_MULTI_CONFIG)
+  if(NOT _multi AND NOT CMAKE_BUILD_TYPE)
+    message(STATUS "Talus: no CMAKE_BUILD_TYPE given, plugins build optimised (Release)")
+    set(CMAKE_BUILD_TYPE Release CACHE STRING "Build type (Talus plugins default to Release)" FORCE)
+  endif()
+endfunction()
 
 # talus_sdk_hash(TARGET HEADER): HEADER (a path in the build tree) defines
 # TALUS_RESOLVED_SDK_HASH, recomputed on every build from the SDK headers that
@@ -37,6 +49,7 @@ function(talus_add_plugin name)
   if(NOT ARG_SOURCES)
     message(FATAL_ERROR "talus_add_plugin(${name}): SOURCES is required")
   endif()
+  _talus_default_build_type()
 
   set(_gen "${CMAKE_CURRENT_BINARY_DIR}/${name}_talus")
   set(_build_source "${_gen}/talus_plugin_build_$<CONFIG>.cpp")
