@@ -3,8 +3,9 @@
 # Builds a Talus plugin: a shared library with hidden visibility, C++20,
 # OpenMP and the -march of Talus, linked against libtalus, and writes the
 # plugin's manifest (NAME.talus.json, its descriptor as JSON) next to it so the
-# host can index plugins without loading them. NO_MANIFEST skips that step
-# (it runs `talus`, which refuses a plugin it could not load).
+# host can index plugins without loading them. NO_MANIFEST skips that step,
+# for libraries the host is meant to refuse (tests): `talus manifest` would
+# refuse them and fail the build.
 #
 # Each plugin gets a generated source compiled with the plugin's own flags and
 # include path: the hash of the SDK headers as that include path resolves them
