@@ -11,6 +11,9 @@ packages=(
   # GDAL headers: the runout plugin reads GeoTIFF DEMs through GDAL (CMake requires it
   # unless -DTALUS_WITH_GDAL=OFF).
   libgdal-dev
+  # Clang and its OpenMP runtime: one test builds an out-of-tree plugin with clang and checks
+  # that a GCC-built talus loads it (the test skips, saying so, without them).
+  clang libomp-dev
 )
 
 missing=()

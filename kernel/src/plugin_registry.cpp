@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "talus/build_info.hpp"
+#include "plugin_abi.hpp"
 #include "talus/error.hpp"
 #include "text.hpp"
 
@@ -33,24 +33,57 @@ bool is_library(const fs::path& p) {
 
 std::string manifest_path(const std::string& library) { return library + ".talus.json"; }
 
+// A library this talus must not use: why, and the models it would provide
+// (kind, name) when they could be read safely.
+class PluginRefused : public InputError {
+ public:
+  PluginRefused(const std::string& path, std::string reason, std::vector<std::pair<std::string, std::string>> models)
+      : InputError("error: plugin '" + fs::path(path).filename().string() + "' refused: " + reason + "\n       " +
+                   rebuild_advice() + "\n       (" + path + ")"),
+        reason_(std::move(reason)),
+        models_(std::move(models)) {}
+  const std::string& reason() const { return reason_; }
+  const std::vector<std::pair<std::string, std::string>>& models() const { return models_; }
+
+ private:
+  std::string reason_;
+  std::vector<std::pair<std::string, std::string>> models_;
+};
+
+std::string differences_text(const std::vector<std::string>& differences) {
+  std::string out = "built with other SDK headers or flags than this talus:";
+  for (const auto& d : differences) out += "\n         - " + d;
+  return out;
+}
+
+// The model table may be read (names only, nothing called) when the types that
+// describe it have this talus's layout.
+bool model_table_readable(const PluginDescriptor& d) {
+  if (!d.build || !d.models) return false;
+  const nlohmann::json plugin = plugin_abi_record(d).at("layout");
+  for (const auto& [name, value] : host_abi_record().at("layout").items())
+    if ((name.find("(ModelEntry") != std::string::npos || name.find("(PluginDescriptor") != std::string::npos) &&
+        (!plugin.contains(name) || plugin.at(name) != value))
+      return false;
+  return true;
+}
+
 // The plain fields, checked before the model table is touched.
 void check_descriptor(const PluginDescriptor& d, const std::string& path) {
-  const std::string file = fs::path(path).filename().string();
-  const std::string ours = std::string("ABI ") + std::to_string(sdk_abi_version) + " (" + TALUS_COMPILER_ID + ")";
-  const std::string rebuild = " Rebuild it with find_package(Talus " TALUS_VERSION_STRING ").";
   if (d.abi_version != sdk_abi_version)
-    throw InputError("error: plugin '" + file + "' refused: built for Talus SDK ABI " + std::to_string(d.abi_version) +
-                     " (" + (d.compiler ? d.compiler : "?") + "), this talus has " + ours + "." + rebuild + "\n       (" +
-                     path + ")");
-  auto differs = [&](const char* what, const char* theirs, const char* mine) {
-    if (!theirs || std::string(theirs) != mine)
-      throw InputError("error: plugin '" + file + "' refused: built with " + what + " '" + (theirs ? theirs : "?") +
-                       "', this talus has '" + mine + "'." + rebuild + "\n       (" + path + ")");
-  };
-  differs("SDK headers", d.sdk_hash, TALUS_SDK_HASH);
-  differs("compiler", d.compiler, TALUS_COMPILER_ID);
-  differs("build configuration", d.build_config, TALUS_BUILD_CONFIG);
-  if (!d.models && d.model_count) throw InputError("error: plugin '" + file + "' refused: its model table is null");
+    throw PluginRefused(path,
+                        "built for Talus SDK ABI " + std::to_string(d.abi_version) + " (" +
+                            (d.compiler ? d.compiler : "?") + "), this talus has ABI " +
+                            std::to_string(sdk_abi_version) + " (" TALUS_COMPILER_ID ").",
+                        {});
+  if (!d.models && d.model_count) throw PluginRefused(path, "its model table is null.", {});
+  const std::vector<std::string> differences = abi_differences(plugin_abi_record(d), host_abi_record());
+  if (differences.empty()) return;
+  std::vector<std::pair<std::string, std::string>> models;
+  if (model_table_readable(d))
+    for (std::size_t k = 0; k < d.model_count; ++k)
+      if (d.models[k].kind && d.models[k].name) models.emplace_back(d.models[k].kind, d.models[k].name);
+  throw PluginRefused(path, differences_text(differences), std::move(models));
 }
 
 }  // namespace
@@ -128,25 +161,30 @@ void PluginRegistry::index_library(const std::string& raw_path, const std::strin
     }
   }
   const std::size_t index = libraries_.size();
-  if (!fresh || manifest.value("talus_manifest", 0) != manifest_version) {
-    record.indexed_by_loading = true;
-    libraries_.push_back(record);
-    loaded_.emplace_back();
-    try {
-      load(index);  // reads and checks the descriptor; throws on refusal
-    } catch (...) {
-      libraries_.pop_back();
-      loaded_.pop_back();
-      throw;
-    }
-    manifest = describe_library(path);
-  } else {
-    if (manifest.value("abi", -1) != sdk_abi_version) {
+  libraries_.push_back(record);
+  loaded_.emplace_back();
+  try {
+    if (!fresh || manifest.value("talus_manifest", 0) != manifest_version) {
+      libraries_[index].indexed_by_loading = true;
+      load(index);  // reads and checks the descriptor
+      manifest = describe_library(path);
+    } else if (manifest.value("abi", -1) != sdk_abi_version) {
       // Refuse with the descriptor's own words: load to read its plain fields.
-      describe_library(path);
+      manifest = describe_library(path);
+    } else if (const auto differences = abi_differences(manifest, host_abi_record()); !differences.empty()) {
+      throw PluginRefused(path, differences_text(differences), {});
     }
-    libraries_.push_back(record);
-    loaded_.emplace_back();
+  } catch (const PluginRefused& e) {
+    std::vector<ModelRecord> models;
+    for (const auto& [kind, name] : e.models()) models.push_back({kind, name, "", index});
+    if (models.empty() && fresh && manifest.contains("models"))
+      for (const auto& m : manifest.at("models")) models.push_back({m.value("kind", ""), m.value("name", ""), "", index});
+    refuse(index, e.reason(), models);
+    return;
+  } catch (...) {
+    libraries_.pop_back();
+    loaded_.pop_back();
+    throw;
   }
   libraries_[index].plugin_name = manifest.value("plugin", "");
   libraries_[index].plugin_version = manifest.value("version", "");
@@ -168,7 +206,8 @@ const PluginDescriptor& PluginRegistry::load(std::size_t index) {
   try {
     loaded->library.load(path, boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local);
   } catch (const std::exception& e) {
-    throw InputError("error: plugin '" + path + "' could not be loaded: " + e.what());
+    // Typically a plugin built against another libtalus (a missing symbol).
+    throw PluginRefused(path, std::string("it could not be loaded: ") + e.what(), {});
   }
   if (!loaded->library.has(TALUS_DESCRIPTOR_SYMBOL))
     throw InputError("error: '" + path + "' is not a Talus plugin: it exports no " TALUS_DESCRIPTOR_SYMBOL);
@@ -179,6 +218,29 @@ const PluginDescriptor& PluginRegistry::load(std::size_t index) {
   return *slot->descriptor;
 }
 
+void PluginRegistry::refuse(std::size_t index, const std::string& reason, const std::vector<ModelRecord>& models) {
+  LibraryRecord& l = libraries_[index];
+  l.refused = reason;
+  refused_models_.insert(refused_models_.end(), models.begin(), models.end());
+  std::string provides;
+  for (const auto& m : models) provides += (provides.empty() ? "" : ", ") + m.kind + " '" + m.name + "'";
+  warnings_.push_back("warning: plugin '" + fs::path(l.path).filename().string() + "' (" + l.origin +
+                      ") skipped: " + reason + "\n         Scenes that use its models" +
+                      (provides.empty() ? "" : " (" + provides + ")") + " will be refused. " + rebuild_advice() +
+                      "\n         (" + l.path + ")");
+}
+
+void PluginRegistry::refused_model(std::string_view kind, std::string_view name) const {
+  for (const auto& m : refused_models_)
+    if (m.kind == kind && m.name == name) {
+      const LibraryRecord& l = libraries_[m.library];
+      throw InputError("error: " + std::string(kind) + " '" + std::string(name) + "' is provided by plugin '" +
+                       fs::path(l.path).filename().string() + "', which was refused: " + l.refused + "\n       " +
+                       rebuild_advice() + "\n       (" + l.path + ")");
+    }
+  throw InputError("error: no " + std::string(kind) + " model named '" + std::string(name) + "'");
+}
+
 nlohmann::json PluginRegistry::describe_library(const std::string& path) {
   PluginRegistry one;
   one.libraries_.push_back({fs::weakly_canonical(path).string(), "", "", "manifest", false, true});
@@ -187,15 +249,16 @@ nlohmann::json PluginRegistry::describe_library(const std::string& path) {
   nlohmann::json models = nlohmann::json::array();
   for (std::size_t k = 0; k < d.model_count; ++k)
     models.push_back({{"kind", d.models[k].kind}, {"name", d.models[k].name}, {"summary", d.models[k].summary}});
-  return {{"talus_manifest", manifest_version},
-          {"library", fs::path(path).filename().string()},
-          {"plugin", d.plugin_name},
-          {"version", d.plugin_version},
-          {"abi", d.abi_version},
-          {"sdk_hash", d.sdk_hash},
-          {"compiler", d.compiler},
-          {"build_config", d.build_config},
-          {"models", models}};
+  nlohmann::json out = {{"talus_manifest", manifest_version},
+                        {"library", fs::path(path).filename().string()},
+                        {"plugin", d.plugin_name},
+                        {"version", d.plugin_version},
+                        {"abi", d.abi_version},
+                        {"models", models}};
+  // sdk_hash, compiler, build_config, build_type, optimised, layout: checked
+  // again when the manifest indexes the library.
+  out.update(plugin_abi_record(d));
+  return out;
 }
 
 std::vector<std::string> PluginRegistry::model_names(std::string_view kind) const {
@@ -213,7 +276,17 @@ const ModelRecord* PluginRegistry::find(std::string_view kind, std::string_view 
 }
 
 const ModelEntry& PluginRegistry::entry(const ModelRecord& record) {
-  const PluginDescriptor& d = load(record.library);
+  const PluginDescriptor* loaded = nullptr;
+  try {
+    loaded = &load(record.library);
+  } catch (const PluginRefused& e) {
+    // Indexed from a manifest that looked right, refused when loaded.
+    throw InputError("error: " + record.kind + " '" + record.name + "' is provided by plugin '" +
+                     fs::path(libraries_[record.library].path).filename().string() + "', which was refused: " +
+                     e.reason() + "\n       " + rebuild_advice() + "\n       (" + libraries_[record.library].path +
+                     ")");
+  }
+  const PluginDescriptor& d = *loaded;
   for (std::size_t k = 0; k < d.model_count; ++k)
     if (record.kind == d.models[k].kind && record.name == d.models[k].name) return d.models[k];
   throw InputError("error: plugin '" + libraries_[record.library].path + "' no longer provides " + record.kind + " '" +
@@ -225,7 +298,11 @@ const ParamSet* PluginRegistry::model_params(std::string_view kind, std::string_
   for (const auto& [k, set] : params_cache_)
     if (k == key) return set.get();
   const ModelRecord* record = find(kind, name);
-  if (!record) return nullptr;
+  if (!record) {
+    for (const auto& m : refused_models_)
+      if (m.kind == kind && m.name == name) refused_model(kind, name);
+    return nullptr;
+  }
   auto set = std::make_unique<ParamSet>(entry(*record).describe());
   params_cache_.emplace_back(key, std::move(set));
   return params_cache_.back().second.get();
@@ -233,7 +310,7 @@ const ParamSet* PluginRegistry::model_params(std::string_view kind, std::string_
 
 std::unique_ptr<Model> PluginRegistry::create(std::string_view kind, std::string_view name, const ParamValues& values) {
   const ModelRecord* record = find(kind, name);
-  if (!record) throw InputError("error: no " + std::string(kind) + " model named '" + std::string(name) + "'");
+  if (!record) refused_model(kind, name);  // names the refused plugin if one provides it
   auto model = entry(*record).create(values);
   if (!model) throw InputError("error: the factory of " + std::string(kind) + " '" + std::string(name) + "' returned nothing");
   return model;

@@ -8,6 +8,12 @@
 // manifest is loaded once to read its descriptor. Libraries are owned by the
 // registry, loaded serially, never unloaded before the registry dies, and the
 // registry must outlive every model it created.
+//
+// A library that fails the ABI check (plugin_abi.hpp) or cannot be loaded is
+// not an error by itself: it is kept as refused, with a warning that names it
+// and why, so that one stale plugin on the search path does not break
+// commands that never use it. Asking for a model it provides (as far as its
+// manifest or descriptor says) is the error.
 #pragma once
 
 #include "talus/config.hpp"
@@ -36,6 +42,7 @@ struct LibraryRecord {
   std::string origin;  // "built-in", "TALUS_PLUGIN_PATH", "scene"
   bool loaded = false;
   bool indexed_by_loading = false;  // no (or a stale) manifest
+  std::string refused;              // why it cannot be used; empty when it can
 };
 
 class TALUS_API PluginRegistry final : public ModelCatalogue {
@@ -67,6 +74,10 @@ class TALUS_API PluginRegistry final : public ModelCatalogue {
   }
 
   const std::vector<ModelRecord>& models() const { return models_; }
+  // Models of refused libraries, as far as they are known.
+  const std::vector<ModelRecord>& refused_models() const { return refused_models_; }
+  // One "warning: plugin ... skipped: ..." text per refused library.
+  const std::vector<std::string>& warnings() const { return warnings_; }
   const std::vector<LibraryRecord>& libraries() const { return libraries_; }
 
   static std::string builtin_folder();
@@ -78,11 +89,15 @@ class TALUS_API PluginRegistry final : public ModelCatalogue {
   struct Loaded;
   void index_library(const std::string& path, const std::string& origin);
   const PluginDescriptor& load(std::size_t library);
+  void refuse(std::size_t library, const std::string& reason, const std::vector<ModelRecord>& models);
+  [[noreturn]] void refused_model(std::string_view kind, std::string_view name) const;
   const ModelEntry& entry(const ModelRecord& record);
   [[noreturn]] void wrong_interface(std::string_view kind, std::string_view name) const;
 
   std::vector<LibraryRecord> libraries_;
   std::vector<ModelRecord> models_;
+  std::vector<ModelRecord> refused_models_;
+  std::vector<std::string> warnings_;
   std::vector<std::unique_ptr<Loaded>> loaded_;  // parallel to libraries_
   std::vector<std::pair<std::string, std::unique_ptr<ParamSet>>> params_cache_;  // "kind/name"
 };

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "process.hpp"
+#include "talus/build_info.hpp"
 
 namespace fs = std::filesystem;
 using talus::test::read_file;
@@ -65,6 +66,43 @@ TEST(Cli, ValidatePlanAndDocOnAGoodScene) {
   EXPECT_EQ(d.exit_code, 0);
   EXPECT_NE(d.output.find("dt"), std::string::npos);
   EXPECT_EQ(run_command(exe + " doc balistic").exit_code, 2);
+}
+
+// A stale plugin on TALUS_PLUGIN_PATH (another SDK ABI; edited SDK headers) is a
+// warning naming it for commands that do not need it, and an error naming the
+// plugin and the model only for a scene that uses one of its models.
+TEST(Cli, StalePluginsOnThePathAreWarningsUntilASceneNeedsThem) {
+  const std::string dir = TALUS_TEST_PLUGINS;
+  const std::string stale = "TALUS_PLUGIN_PATH=" + dir + "/good:" + dir + "/wrong_abi:" + dir + "/edited_sdk " + TALUS_EXE;
+  const auto p = run_command(stale + " plugins");
+  EXPECT_EQ(p.exit_code, 0) << p.output;
+  EXPECT_NE(p.output.find("warning: plugin 'libtalus_test_wrong_abi.so' (TALUS_PLUGIN_PATH) skipped: built for Talus "
+                          "SDK ABI"),
+            std::string::npos)
+      << p.output;
+  EXPECT_NE(p.output.find("warning: plugin 'libtalus_test_edited_sdk.so' (TALUS_PLUGIN_PATH) skipped: built with other "
+                          "SDK headers or flags than this talus:"),
+            std::string::npos)
+      << p.output;
+  EXPECT_NE(p.output.find("Scenes that use its models (rheology 'tiny_newtonian') will be refused."), std::string::npos)
+      << p.output;
+  EXPECT_NE(p.output.find("ballistic"), std::string::npos) << p.output;
+  EXPECT_NE(p.output.find("2 libraries skipped"), std::string::npos) << p.output;
+
+  const auto v = run_command(stale + " validate " + scenes + "/ballistic.json");
+  EXPECT_EQ(v.exit_code, 0) << v.output;
+  EXPECT_NE(v.output.find("valid (100 fluid particles"), std::string::npos) << v.output;
+  EXPECT_NE(v.output.find("warning: plugin 'libtalus_test_edited_sdk.so'"), std::string::npos) << v.output;
+
+  const auto needs = run_command(stale + " validate " + scenes + "/ballistic_tiny_rheology.json");
+  EXPECT_EQ(needs.exit_code, 2) << needs.output;
+  EXPECT_NE(needs.output.find("/materials/water/rheology/type: rheology 'tiny_newtonian' is provided by plugin "
+                              "'libtalus_test_edited_sdk.so', which was refused"),
+            std::string::npos)
+      << needs.output;
+  EXPECT_NE(needs.output.find("Rebuild it against this talus (" TALUS_VERSION_STRING ", build tree " TALUS_BINARY_DIR),
+            std::string::npos)
+      << needs.output;
 }
 
 // `talus doc` covers the scene file's own sections too, not only models.

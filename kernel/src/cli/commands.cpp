@@ -76,13 +76,35 @@ std::string one_scene(const Options& o, const char* command) {
   return o.positional.front();
 }
 
-void open_registry(PluginRegistry& registry) { registry.add_default_locations(); }
+// Refused plugins are warnings until a scene needs one of their models.
+void print_warnings(const PluginRegistry& registry, std::size_t from) {
+  for (std::size_t k = from; k < registry.warnings().size(); ++k)
+    std::fprintf(stderr, "%s\n", registry.warnings()[k].c_str());
+}
+
+void open_registry(PluginRegistry& registry) {
+  registry.add_default_locations();
+  print_warnings(registry, 0);
+}
+
+// load_scene, and the warnings of the plugins the scene's own list added.
+Scene scene_of(const std::string& path, PluginRegistry& registry) {
+  const std::size_t before = registry.warnings().size();
+  try {
+    Scene scene = load_scene(path, registry);
+    print_warnings(registry, before);
+    return scene;
+  } catch (...) {
+    print_warnings(registry, before);
+    throw;
+  }
+}
 
 // The scene, refused before anything is allocated if it needs more memory
 // than the machine has (unless --allow-large); its estimate goes to `estimate`.
 Scene sized_scene(const std::string& path, PluginRegistry& registry, const Options& o, ResourceEstimate& estimate,
                   bool print_refused = false) {
-  Scene scene = load_scene(path, registry);
+  Scene scene = scene_of(path, registry);
   set_memory_check(!o.allow_large);
   estimate = estimate_resources(scene, registry);
   try {
@@ -273,8 +295,11 @@ int plugins(const Args& args) {
                   registry.libraries()[m.library].plugin_version.c_str(),
                   fs::path(registry.libraries()[m.library].path).filename().c_str());
   }
+  std::size_t refused = 0;
+  for (const auto& l : registry.libraries()) refused += l.refused.empty() ? 0 : 1;
   std::printf("\n%zu models in %zu libraries; `talus doc NAME` shows a model's parameters.\n", registry.models().size(),
-              registry.libraries().size());
+              registry.libraries().size() - refused);
+  if (refused) std::printf("%zu libraries skipped (see the warnings above).\n", refused);
   return 0;
 }
 

@@ -161,6 +161,11 @@ class TALUS_API ParamSet {
 
 // A validated value. Which members are meaningful depends on `type`.
 struct TALUS_API ParamValue {
+  // Defined after ParamValues: otherwise clang 14 instantiates
+  // std::pair<std::string, ParamValue> while checking this constructor inside
+  // ParamValues, where the pair is still incomplete.
+  ParamValue();
+
   ParamType type = ParamType::real;
   double real = 0.0;
   std::int64_t integer = 0;
@@ -235,6 +240,8 @@ class TALUS_API ParamValues {
   std::string pointer_;
   std::vector<std::pair<std::string, ParamValue>> entries_;
 };
+
+inline ParamValue::ParamValue() = default;
 
 // Errors collected while validating, each with file, JSON pointer, what is
 // wrong and, on a second line, what is allowed.

@@ -1,7 +1,9 @@
-// The one descriptor a plugin library exports (DESIGN.md principle 5). The host
-// reads the plain fields first (ABI version, SDK hash, compiler, build
-// configuration) and refuses the library on any mismatch before it touches
-// the model table.
+// The one descriptor a plugin library exports (docs/DESIGN.md principle 5).
+// The host reads the plain fields first (ABI version, SDK header hash, ABI
+// flags, the layout record) and refuses the library on any mismatch before it
+// touches the model table. The hash and the layout record come from a source
+// that talus_add_plugin generates and compiles into the plugin, so they
+// describe the headers and flags the plugin was really built with.
 //
 //   TALUS_PLUGIN("talus-eos", "0.1.0",
 //                talus::model_entry<Tait>("eos", "tait", "Tait equation of state"));
@@ -13,7 +15,7 @@
 
 #include <boost/dll/alias.hpp>
 
-#include "talus/build_info.hpp"  // generated: TALUS_SDK_HASH, TALUS_BUILD_CONFIG
+#include "talus/abi.hpp"
 #include "talus/config.hpp"
 #include "talus/params.hpp"
 
@@ -34,15 +36,18 @@ struct ModelEntry {
   std::unique_ptr<Model> (*create)(const ParamValues&);
 };
 
+// The first eight fields keep their places across ABI versions, so that a
+// plugin built for another version is still named in the refusal.
 struct PluginDescriptor {
   int abi_version;           // talus::sdk_abi_version of the SDK the plugin was built with
-  const char* sdk_hash;      // hash of the SDK headers
-  const char* compiler;      // e.g. "GCC 12.2"
-  const char* build_config;  // real type, -march, Eigen alignment
+  const char* sdk_hash;      // hash of the SDK headers the plugin's build resolved; null without talus_add_plugin
+  const char* compiler;      // e.g. "GCC 12.2", "Clang 14.0"
+  const char* build_config;  // TALUS_ABI_FLAGS as the plugin was compiled
   const char* plugin_name;
   const char* plugin_version;
   const ModelEntry* models;
   std::size_t model_count;
+  const PluginBuild* build;  // layout record and build type; null without talus_add_plugin
 };
 
 // Builds a ModelEntry for a class with `static ParamSet describe()` and a
@@ -53,11 +58,15 @@ constexpr ModelEntry model_entry(const char* kind, const char* name, const char*
                     [](const ParamValues& v) -> std::unique_ptr<Model> { return std::make_unique<Impl>(v); }};
 }
 
-#define TALUS_STRINGIFY_(x) #x
-#define TALUS_STRINGIFY(x) TALUS_STRINGIFY_(x)
-#define TALUS_COMPILER_ID "GCC " TALUS_STRINGIFY(__GNUC__) "." TALUS_STRINGIFY(__GNUC_MINOR__)
-
 }  // namespace talus
+
+// Defined in the source talus_add_plugin generates for each plugin. Weak: a
+// library built without it links, and the host refuses it by name instead of
+// failing to load it with an undefined symbol.
+extern "C" {
+extern const char talus_plugin_sdk_hash[] __attribute__((weak, visibility("hidden")));
+extern const talus::PluginBuild talus_plugin_build __attribute__((weak, visibility("hidden")));
+}
 
 // The exported symbol the host looks for.
 #define TALUS_DESCRIPTOR_SYMBOL "talus_plugin_descriptor"
@@ -66,8 +75,8 @@ constexpr ModelEntry model_entry(const char* kind, const char* name, const char*
   namespace {                                                                                     \
   const ::talus::ModelEntry talus_plugin_models_[] = {__VA_ARGS__};                               \
   const ::talus::PluginDescriptor talus_plugin_descriptor_impl_{                                  \
-      ::talus::sdk_abi_version, TALUS_SDK_HASH,     TALUS_COMPILER_ID,                           \
-      TALUS_BUILD_CONFIG,       PLUGIN_NAME,        PLUGIN_VERSION,                              \
-      talus_plugin_models_,     std::size(talus_plugin_models_)};                                 \
+      ::talus::sdk_abi_version, talus_plugin_sdk_hash, TALUS_COMPILER_ID,                        \
+      TALUS_ABI_FLAGS,          PLUGIN_NAME,           PLUGIN_VERSION,                           \
+      talus_plugin_models_,     std::size(talus_plugin_models_), &talus_plugin_build};            \
   }                                                                                               \
   BOOST_DLL_ALIAS(talus_plugin_descriptor_impl_, talus_plugin_descriptor)

@@ -4,9 +4,9 @@
 #include "talus/plugin.hpp"
 
 namespace {
-const talus::PluginDescriptor wrong_descriptor{talus::sdk_abi_version + 98, TALUS_SDK_HASH, TALUS_COMPILER_ID,
-                                               TALUS_BUILD_CONFIG,          "talus-test-wrong-abi", "9.9.9",
-                                               nullptr,                     0};
+const talus::PluginDescriptor wrong_descriptor{talus::sdk_abi_version + 98, "0000000000000000", TALUS_COMPILER_ID,
+                                               TALUS_ABI_FLAGS,             "talus-test-wrong-abi", "9.9.9",
+                                               nullptr,                     0,                      nullptr};
 }  // namespace
 
 BOOST_DLL_ALIAS(wrong_descriptor, talus_plugin_descriptor)
