@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -57,6 +58,7 @@ void set_memory_check(bool enabled) { check_enabled.store(enabled); }
 bool memory_check_enabled() { return check_enabled.load(); }
 
 std::string memory_text(double bytes) {
+  if (!std::isfinite(bytes)) return "more than can be counted";
   const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
   int u = 0;
   while (bytes >= 1024.0 && u < 6) {

@@ -142,8 +142,10 @@ void print_estimate(std::ostream& out, const ResourceEstimate& e) {
 void check_resources(const Scene& scene, const ResourceEstimate& e) {
   const ResourceEstimate::Part* big = e.largest();
   if (!big) return;
+  const std::string count =
+      std::isfinite(big->count) ? text::number(std::round(big->count)) : std::string("more than can be counted:");
   require_memory(e.bytes(), scene.path + ": " + big->pointer,
-                 "the scene (" + big->what + ": " + text::number(std::round(big->count)) +
+                 "the scene (" + big->what + ": " + count +
                      (big->what.find("cells") != std::string::npos ? "" : " particles") + ", the largest part)");
 }
 

@@ -52,7 +52,7 @@ struct MeshMeasure {
 };
 
 MeshMeasure measure_mesh(const ParamValues& v) {
-  TriangleMesh m = load_mesh(v.string("file"));
+  TriangleMesh m = v.read_file("file", [](const std::string& f) { return load_mesh(f); });
   const double s = v.real("scale");
   const Vec3 o = v.vector("offset");
   for (auto& p : m.vertices) p = p * s + o;
