@@ -466,8 +466,6 @@ void DepthIntegratedSph::advance(World& world, double dt) {
   // A particle that has not moved yet resists with its limit-state shear.
   const bool resists = s.has("initial_basal_shear");
   std::span<double> initial = resists ? s.scalar("initial_basal_shear") : std::span<double>{};
-  if (resists)
-    for (std::size_t i = 0; i < n; ++i) tau_[i] = std::max(tau_[i], initial[i]);
 
   // 6. Friction acts against the motion and at most stops it within the step
   //    (implicit: a particle whose speed friction can absorb this step stops).
@@ -486,6 +484,7 @@ void DepthIntegratedSph::advance(World& world, double dt) {
   };
 #pragma omp parallel for schedule(static) if (n > parallel_min)
   for (std::size_t i = 0; i < n; ++i) {
+    if (resists) tau_[i] = std::max(tau_[i], initial[i]);
     const double decel = depth[i] > 0.0 ? tau_[i] / (density_[i] * depth[i]) * dt : 0.0;
     const double sp = speed_[i];
     double factor = 1.0;
