@@ -69,16 +69,29 @@ Handoff build_handoff(const BlockSet& b, const std::vector<Vec3>& position, cons
     }
   h.density = h.failed_volume > 0.0 ? mass / h.failed_volume : 0.0;
 
+  // Plan bounds of each block, so that a cell tests only the blocks above it.
+  std::vector<Vec3> lo(b.size(), Vec3{1e300, 1e300, 0.0}), hi(b.size(), Vec3{-1e300, -1e300, 0.0});
+  for (std::size_t i = 0; i < b.size(); ++i)
+    for (const Vec3& v : b.shape[i].vertices) {
+      const Vec3 x = position[i] + rotate(orientation[i], v);
+      lo[i] = {std::min(lo[i].x, x.x), std::min(lo[i].y, x.y), 0.0};
+      hi[i] = {std::max(hi[i].x, x.x), std::max(hi[i].y, x.y), 0.0};
+    }
   const double cell = layout.cell;
+  std::vector<std::size_t> near;
   for (int r = 0; r < layout.nrows; ++r)
     for (int col = 0; col < layout.ncols; ++col) {
-      const double x = layout.x_of(col), y = layout.y_of(r);
-      double top = -std::numeric_limits<double>::infinity(), lo = 0.0, hi = 0.0;
+      const double x = layout.x_of(col), y = layout.y_of(r), half = 0.5 * cell;
+      near.clear();
+      for (std::size_t i = 0; i < b.size(); ++i)
+        if (x + half >= lo[i].x && x - half <= hi[i].x && y + half >= lo[i].y && y - half <= hi[i].y)
+          near.push_back(i);
+      double top = -std::numeric_limits<double>::infinity(), z0 = 0.0, z1 = 0.0;
       bool covered = false;
-      for (std::size_t i = 0; i < b.size(); ++i) {
-        if (!vertical_extent(b.shape[i], position[i], orientation[i], x, y, lo, hi)) continue;
+      for (const std::size_t i : near) {
+        if (!vertical_extent(b.shape[i], position[i], orientation[i], x, y, z0, z1)) continue;
         covered = true;
-        if (!released[i]) top = std::max(top, hi);
+        if (!released[i]) top = std::max(top, z1);
       }
       double& z = h.terrain.at(col, r);
       if (covered)
@@ -90,9 +103,9 @@ Handoff build_handoff(const BlockSet& b, const std::vector<Vec3>& position, cons
       for (int sy = 0; sy < samples; ++sy)
         for (int sx = 0; sx < samples; ++sx) {
           const double px = x + ((sx + 0.5) / samples - 0.5) * cell, py = y + ((sy + 0.5) / samples - 0.5) * cell;
-          for (std::size_t i = 0; i < b.size(); ++i)
-            if (released[i] && vertical_extent(b.shape[i], position[i], orientation[i], px, py, lo, hi))
-              column += hi - lo;
+          for (const std::size_t i : near)
+            if (released[i] && vertical_extent(b.shape[i], position[i], orientation[i], px, py, z0, z1))
+              column += z1 - z0;
         }
       column /= samples * samples;
       h.thickness.at(col, r) = column;

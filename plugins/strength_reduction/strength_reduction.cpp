@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 
 #include "esri_ascii.hpp"
 #include "file_io.hpp"
@@ -556,7 +557,7 @@ std::vector<std::string> StrengthReduction::write_handoff(const World& world, co
           "thickness raster " + number("%.6g", h.raster_volume) + " m^3 (" +
               number("%+.3f", 100.0 * (h.raster_volume / h.failed_volume - 1.0)) + " %); basal shear from " +
               std::to_string(h.slip_contacts) + " slip-surface contacts; c/F_s = " + number("%.4g", cohesion) +
-              " Pa, phi_F = " + number("%.4g", std::atan(tan_friction) * 180.0 / 3.141592653589793) + " deg",
+              " Pa, phi_F = " + number("%.4g", std::atan(tan_friction) * 180.0 / std::numbers::pi) + " deg",
           "strength_reduction: run-out scene " + scene_path + " (run it: talus run " + scene_path + ")"};
 }
 

@@ -14,7 +14,7 @@ using namespace talus::strength_reduction;
 
 namespace {
 
-// A box about its centre: the face planes are all vertical_extent reads.
+// A box about its centre: its corners (the plan bounds) and face planes (what vertical_extent reads).
 Polyhedron box(Vec3 half) {
   Polyhedron p;
   for (int axis = 0; axis < 3; ++axis)
@@ -25,6 +25,7 @@ Polyhedron box(Vec3 half) {
       p.offsets.push_back(half[axis]);
       p.faces.push_back({});
     }
+  for (int k = 0; k < 8; ++k) p.vertices.push_back({k & 1 ? half.x : -half.x, k & 2 ? half.y : -half.y, k & 4 ? half.z : -half.z});
   p.radius = norm(half);
   return p;
 }
