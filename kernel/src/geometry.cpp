@@ -84,18 +84,38 @@ void declare_shape(ParamSet& body) {
 
 namespace {
 
-using Inside = std::function<bool(const Vec3&)>;
+// A lattice point is kept, or dropped together with the next `skip` points
+// along +x: those lie closer to it than its distance to anything kept.
+struct Verdict {
+  bool keep = false;
+  long long skip = 0;
+};
+using Classify = std::function<Verdict(const Vec3&)>;
 
-// Lattice points p = lo + (i + 1/2) dp within [lo, hi] for which keep(p).
-std::vector<Vec3> lattice(const Vec3& lo, const Vec3& hi, double dp, int dim, const Inside& keep) {
-  int n[3] = {1, 1, 1};
-  for (int a = 0; a < dim; ++a) n[a] = std::max(0, static_cast<int>(std::lround((hi[a] - lo[a]) / dp)));
+// Lattice points after a dropped one along x that certainly lie within
+// `distance` of it (one fewer than fit, for rounding in the distance).
+long long points_within(double distance, double dp) {
+  const double n = std::floor(distance / dp) - 1.0;
+  if (!(n > 0.0)) return 0;
+  return n < 1e18 ? static_cast<long long>(n) : 1'000'000'000'000'000'000LL;
+}
+
+// Lattice points p = lo + (i + 1/2) dp within [lo, hi] that classify keeps.
+// Skipping makes the work grow with the points kept and the rows, not with
+// the volume of [lo, hi]: a wall around a large tank costs its surface.
+std::vector<Vec3> lattice(const Vec3& lo, const Vec3& hi, double dp, int dim, const Classify& classify) {
+  long long n[3] = {1, 1, 1};
+  for (int a = 0; a < dim; ++a) n[a] = std::max(0LL, std::llround((hi[a] - lo[a]) / dp));
   std::vector<Vec3> out;
-  for (int k = 0; k < n[2]; ++k)
-    for (int j = 0; j < n[1]; ++j)
-      for (int i = 0; i < n[0]; ++i) {
-        Vec3 p{lo.x + (i + 0.5) * dp, lo.y + (j + 0.5) * dp, dim == 3 ? lo.z + (k + 0.5) * dp : 0.0};
-        if (keep(p)) out.push_back(p);
+  for (long long k = 0; k < n[2]; ++k)
+    for (long long j = 0; j < n[1]; ++j)
+      for (long long i = 0; i < n[0]; ++i) {
+        const Vec3 p{lo.x + (i + 0.5) * dp, lo.y + (j + 0.5) * dp, dim == 3 ? lo.z + (k + 0.5) * dp : 0.0};
+        const Verdict v = classify(p);
+        if (v.keep)
+          out.push_back(p);
+        else
+          i += std::min(v.skip, n[0]);
       }
   return out;
 }
@@ -108,12 +128,12 @@ TriangleMesh scaled_mesh(const ParamValues& v) {
   return m;
 }
 
-// Signed distance-like description of a solid shape: inside(p) and the
-// distance of an inside point to the surface.
+// A solid shape: its bounding box, inside(p), and the distance from p to its
+// surface (exact, on either side: the lattice skips by it).
 struct Solid {
-  Vec3 lo, hi;  // bounding box
+  Vec3 lo, hi;
   std::function<bool(const Vec3&)> inside;
-  std::function<double(const Vec3&)> depth;  // distance to the surface, for inside points
+  std::function<double(const Vec3&)> distance;
 };
 
 Solid solid(const std::string& alt, const ParamValues& v, int dim, const Vec3& dlo, const Vec3& dhi) {
@@ -126,16 +146,20 @@ Solid solid(const std::string& alt, const ParamValues& v, int dim, const Vec3& d
               return true;
             },
             [=](const Vec3& p) {
-              double d = 1e300;
-              for (int a = 0; a < dim; ++a) d = std::min({d, p[a] - lo[a], hi[a] - p[a]});
-              return d;
+              double depth = 1e300, outside = 0.0;
+              for (int a = 0; a < dim; ++a) {
+                depth = std::min({depth, p[a] - lo[a], hi[a] - p[a]});
+                const double beyond = std::max({0.0, lo[a] - p[a], p[a] - hi[a]});
+                outside += beyond * beyond;
+              }
+              return outside > 0.0 ? std::sqrt(outside) : depth;
             }};
   }
   if (alt == "sphere") {
     const Vec3 c = v.vector("centre");
     const double r = v.real("radius");
     const Vec3 e{r, r, dim == 3 ? r : 0.0};
-    return {c - e, c + e, [=](const Vec3& p) { return norm(p - c) < r; }, [=](const Vec3& p) { return r - norm(p - c); }};
+    return {c - e, c + e, [=](const Vec3& p) { return norm(p - c) < r; }, [=](const Vec3& p) { return std::abs(r - norm(p - c)); }};
   }
   if (alt == "cylinder") {
     if (dim != 3) v.fail("", "a cylinder needs a 3D domain (use a box in 2D)");
@@ -149,7 +173,12 @@ Solid solid(const std::string& alt, const ParamValues& v, int dim, const Vec3& d
     auto radial = [=](const Vec3& p) { const Vec3 d = p - base; return norm(d - axis * dot(d, axis)); };
     return {base - e, base + e,
             [=](const Vec3& p) { const double s = dot(p - base, axis); return s >= 0 && s <= len && radial(p) < r; },
-            [=](const Vec3& p) { const double s = dot(p - base, axis); return std::min({s, len - s, r - radial(p)}); }};
+            [=](const Vec3& p) {
+              const double s = dot(p - base, axis), rho = radial(p);
+              const double axial = std::max(-s, s - len), across = rho - r;
+              if (axial <= 0.0 && across <= 0.0) return std::min(-axial, -across);
+              return std::hypot(std::max(0.0, axial), std::max(0.0, across));
+            }};
   }
   if (alt == "polygon") {
     if (dim != 2) v.fail("", "a polygon is a plan-view shape for 2D domains (use a mesh or polyhedron in 3D)");
@@ -191,7 +220,7 @@ Solid solid(const std::string& alt, const ParamValues& v, int dim, const Vec3& d
     Vec3 n = v.vector("normal");
     if (!(norm(n) > 0.0)) v.fail("normal", "must not be the zero vector");
     n = n / norm(n);
-    return {dlo, dhi, [=](const Vec3& p) { return dot(p - x0, n) < 0.0; }, [=](const Vec3& p) { return -dot(p - x0, n); }};
+    return {dlo, dhi, [=](const Vec3& p) { return dot(p - x0, n) < 0.0; }, [=](const Vec3& p) { return std::abs(dot(p - x0, n)); }};
   }
   if (alt == "mesh") {
     auto mesh = std::make_shared<TriangleMesh>(scaled_mesh(v));
@@ -209,9 +238,11 @@ std::vector<Vec3> fill_points(const std::string& alt, const ParamValues& v, doub
                               const Vec3& dhi) {
   if (alt == "box_walls") v.fail("", "box_walls has no inside to fill; use box for a fluid body");
   const Solid s = solid(alt, v, dim, dlo, dhi);
-  if (alt == "box") return lattice(s.lo, s.hi, dp, dim, [](const Vec3&) { return true; });
+  if (alt == "box") return lattice(s.lo, s.hi, dp, dim, [](const Vec3&) { return Verdict{true}; });
   // Anchor at the bounding box so the lattice is the same as for a box.
-  return lattice(s.lo, s.hi + Vec3{dp, dp, dp}, dp, dim, s.inside);
+  return lattice(s.lo, s.hi + Vec3{dp, dp, dp}, dp, dim, [&](const Vec3& p) {
+    return s.inside(p) ? Verdict{true} : Verdict{false, points_within(s.distance(p), dp)};
+  });
 }
 
 std::vector<Vec3> wall_points(const std::string& alt, const ParamValues& v, double dp, int dim, int layers,
@@ -228,16 +259,25 @@ std::vector<Vec3> wall_points(const std::string& alt, const ParamValues& v, doub
       if (!is_open(minus[a])) olo[a] -= thickness;
       if (!is_open(plus[a])) ohi[a] += thickness;
     }
+    // Kept: outside the inner box. A point inside is dropped with the points
+    // nearer to it than the box's faces.
     return lattice(olo, ohi, dp, dim, [&](const Vec3& p) {
-      for (int a = 0; a < dim; ++a)
-        if (p[a] < lo[a] || p[a] > hi[a]) return true;
-      return false;
+      double depth = 1e300;
+      for (int a = 0; a < dim; ++a) {
+        if (p[a] < lo[a] || p[a] > hi[a]) return Verdict{true};
+        depth = std::min({depth, p[a] - lo[a], hi[a] - p[a]});
+      }
+      return Verdict{false, points_within(depth, dp)};
     });
   }
+  // Kept: inside the solid, less than `thickness` from its surface.
   const Solid s = solid(alt, v, dim, dlo, dhi);
-  if (alt == "box") return lattice(s.lo, s.hi, dp, dim, [&](const Vec3& p) { return s.depth(p) < thickness; });
-  return lattice(s.lo, s.hi + Vec3{dp, dp, dp}, dp, dim,
-                 [&](const Vec3& p) { return s.inside(p) && s.depth(p) < thickness; });
+  const Vec3 hi = alt == "box" ? s.hi : s.hi + Vec3{dp, dp, dp};
+  return lattice(s.lo, hi, dp, dim, [&](const Vec3& p) {
+    const double d = s.distance(p);
+    if (!s.inside(p)) return Verdict{false, points_within(d, dp)};
+    return d < thickness ? Verdict{true} : Verdict{false, points_within(d - thickness, dp)};
+  });
 }
 
 }  // namespace talus

@@ -88,6 +88,76 @@ TEST(Geometry, PolygonNeedsThreeCornersAnAreaAndA2dDomain) {
   EXPECT_THROW(fill_points("polygon", in3d.alternative_values("shape"), 0.1, 3, {}, {}), InputError);
 }
 
+// Every point of the lattice over [lo, lo + n dp], tested one by one: what the
+// generator's skipping must reproduce exactly.
+template <class Keep>
+std::vector<Vec3> every_point(const Vec3& lo, const int n[3], double dp, int dim, Keep keep) {
+  std::vector<Vec3> out;
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i) {
+        const Vec3 p{lo.x + (i + 0.5) * dp, lo.y + (j + 0.5) * dp, dim == 3 ? lo.z + (k + 0.5) * dp : 0.0};
+        if (keep(p)) out.push_back(p);
+      }
+  return out;
+}
+
+void expect_same_points(const std::vector<Vec3>& got, const std::vector<Vec3>& want) {
+  ASSERT_EQ(got.size(), want.size());
+  for (std::size_t k = 0; k < got.size(); ++k) ASSERT_LT(norm(got[k] - want[k]), 1e-12) << "point " << k;  // the test sums its corner another way
+}
+
+TEST(Geometry, SkippingKeepsEveryPointOfASphereShellAndFill) {
+  const ParamValues b = shape(R"({"shape": {"sphere": {"centre": [0.013, -0.2, 0.31], "radius": 0.47}}})");
+  const Vec3 c{0.013, -0.2, 0.31};
+  const double r = 0.47, dp = 0.02, t = 3 * dp;
+  const Vec3 lo = c - Vec3{r, r, r};
+  const int n[3] = {48, 48, 48};  // the lattice over the bounding box and one dp beyond, as the generator lays it
+  expect_same_points(wall_points("sphere", b.alternative_values("shape"), dp, 3, 3, {}, {}),
+                     every_point(lo, n, dp, 3, [&](const Vec3& p) { return norm(p - c) < r && r - norm(p - c) < t; }));
+  expect_same_points(fill_points("sphere", b.alternative_values("shape"), dp, 3, {}, {}),
+                     every_point(lo, n, dp, 3, [&](const Vec3& p) { return norm(p - c) < r; }));
+}
+
+TEST(Geometry, SkippingKeepsEveryPointOfATiltedCylinderShell) {
+  const ParamValues b = shape(
+      R"({"shape": {"cylinder": {"base": [0.1, 0.2, 0.3], "axis": [1, 2, 2], "radius": 0.2, "height": 0.6}}})");
+  const Vec3 base{0.1, 0.2, 0.3}, axis = Vec3{1, 2, 2} / 3.0;
+  const double r = 0.2, len = 0.6, dp = 0.025, t = 2 * dp;
+  const Vec3 lo = base - Vec3{r + len, r + len, r + len};
+  const int n[3] = {65, 65, 65};
+  expect_same_points(wall_points("cylinder", b.alternative_values("shape"), dp, 3, 2, {}, {}),
+                     every_point(lo, n, dp, 3, [&](const Vec3& p) {
+                       const double s = dot(p - base, axis), rho = norm(p - base - axis * s);
+                       return s >= 0 && s <= len && rho < r && std::min({s, len - s, r - rho}) < t;
+                     }));
+}
+
+TEST(Geometry, SkippingKeepsEveryPointOfBoxWallsAndOfAHalfSpace) {
+  const ParamValues w = shape(R"({"shape": {"box_walls": {"min": [0, 0, 0], "max": [0.83, 0.5, 0.61], "open": ["+z"]}}})");
+  const double dp = 0.05;
+  const int n[3] = {23, 16, 15};  // (0.83 + 0.3) / dp, (0.5 + 0.3) / dp, (0.61 + 0.15) / dp rounded
+  expect_same_points(wall_points("box_walls", w.alternative_values("shape"), dp, 3, 3, {}, {}),
+                     every_point(Vec3{-0.15, -0.15, -0.15}, n, dp, 3, [](const Vec3& p) {
+                       return p.x < 0 || p.x > 0.83 || p.y < 0 || p.y > 0.5 || p.z < 0 || p.z > 0.61;
+                     }));
+  const ParamValues h = shape(R"({"shape": {"half_space": {"point": [0.3, 0.4], "normal": [1, 3]}}})", 2);
+  const Vec3 x0{0.3, 0.4, 0.0}, normal = Vec3{1, 3, 0} / std::sqrt(10.0);
+  const int m[3] = {41, 31, 1};
+  expect_same_points(wall_points("half_space", h.alternative_values("shape"), 0.025, 2, 2, {0, 0, 0}, {1, 0.75, 0}),
+                     every_point(Vec3{0, 0, 0}, m, 0.025, 2, [&](const Vec3& p) {
+                       const double behind = -dot(p - x0, normal);
+                       return behind > 0 && behind < 0.05;
+                     }));
+}
+
+TEST(Geometry, WallsOfALargeTankCostTheirSurfaceNotTheTankVolume) {
+  // 20 km by 10 km at dp = 0.05: 8e10 lattice points inside (minutes to test one by one), 1.6e6 wall particles.
+  const ParamValues b = shape(R"({"shape": {"box_walls": {"min": [0, 0], "max": [20000, 10000], "open": ["+y"]}}})", 2);
+  const auto pts = wall_points("box_walls", b.alternative_values("shape"), 0.05, 2, 2, {}, {});
+  EXPECT_EQ(pts.size(), (400000u + 4u) * 2u + 200000u * 2u * 2u);
+}
+
 TEST(Mesh, ObjCubeContainsAndMeasures) {
   const std::string path = std::string(TALUS_BINARY_DIR) + "/tests/cube_test.obj";
   test::write_file(path,
