@@ -140,4 +140,15 @@ TEST(BadScenes, PluginThatCannotBeLoadedHasOneErrorPrefix) {
   EXPECT_EQ(r.validate.find("error: ", 7), std::string::npos) << r.validate;
 }
 
+TEST(BadScenes, ABlowUpDuringTheRunEndsWithAnErrorLine) {
+  // Valid input that cannot be integrated: the block leaves with a non-finite position at the first step.
+  json s = shipped("buoyancy_floating");
+  s["gravity"][2] = -1e308;
+  s["time"]["max_steps"] = 3;
+  const Refusal r = refuse("blow_up", s);
+  EXPECT_EQ(r.validate_code, 0) << r.validate;
+  EXPECT_EQ(r.run_code, 1) << r.run;
+  EXPECT_EQ(r.run.rfind("error: step 0 (t = 0 s): block 'box' has a non-finite position", 0), 0u) << r.run;
+}
+
 }  // namespace

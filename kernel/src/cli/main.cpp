@@ -37,7 +37,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%s\n", e.what());
     return 2;
   } catch (const RunError& e) {
-    std::fprintf(stderr, "%s\n", e.what());
+    // Stages throw what went wrong; the prefix marks it as the run's end.
+    const std::string what = e.what();
+    std::fprintf(stderr, "%s%s\n", what.starts_with("error: ") ? "" : "error: ", what.c_str());
     return 1;
   } catch (const std::bad_alloc&) {
     // Past the up-front estimate (or with --allow-large): still a scene too large for this machine.
