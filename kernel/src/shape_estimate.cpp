@@ -120,8 +120,10 @@ double fill_count_estimate(const std::string& alt, const ParamValues& v, double 
     return extent_volume({dlo_, dhi_}, dim) * (behind / total) / cell;
   }
   if (alt == "mesh") {
+    // In 2D the lattice is the mesh's section by z = 0: its bounding box in
+    // plan bounds it (the mesh's volume does not: a thin slab holds little).
     const MeshMeasure m = measure_mesh(v);
-    return std::min(m.volume, extent_volume(m.box, dim)) / cell;
+    return (dim == 2 ? extent_volume(m.box, 2) : std::min(m.volume, extent_volume(m.box, 3))) / cell;
   }
   return 0.0;  // not a fillable shape: the build reports it
 }
@@ -167,7 +169,7 @@ double wall_count_estimate(const std::string& alt, const ParamValues& v, double 
   if (alt == "half_space") return plane_section(v.vector("normal"), {dlo, dhi}, dim) * t / cell;
   if (alt == "mesh") {
     const MeshMeasure m = measure_mesh(v);
-    return std::min(extent_volume(m.box, dim), m.area * t) / cell;
+    return (dim == 2 ? extent_volume(m.box, 2) : std::min(extent_volume(m.box, 3), m.area * t)) / cell;
   }
   return 0.0;
 }

@@ -105,6 +105,18 @@ TEST(Estimate, CurvedAndHalfSpaceShapes) {
   expect_estimate_close(write_scene(scene, dir), 0.05);
 }
 
+TEST(Estimate, AMeshInA2dSceneCountsItsSectionNotItsVolume) {
+  // A slab 2 mm thick in z: the 2D lattice is its section, 0.16 m by 0.15 m, whatever its volume.
+  const std::string dir = scratch("mesh_2d");
+  write_file(dir + "/slab.obj",
+             "v 0.02 0.05 -0.001\nv 0.18 0.05 -0.001\nv 0.18 0.2 -0.001\nv 0.02 0.2 -0.001\n"
+             "v 0.02 0.05 0.001\nv 0.18 0.05 0.001\nv 0.18 0.2 0.001\nv 0.02 0.2 0.001\n"
+             "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n");
+  json scene = read_json(std::string(TALUS_SOURCE_DIR) + "/tests/verification/water_drop_2d.json");
+  scene["bodies"][0]["shape"] = {{"mesh", {{"file", "slab.obj"}}}};
+  expect_estimate_close(write_scene(scene, dir), 0.1);
+}
+
 TEST(Estimate, PlanPrintsParticlesMemoryAndSteps) {
   const std::string dir = scratch("plan");
   const auto r = run_command(exe + " plan " + write_scene(ballistic(), dir));
