@@ -12,20 +12,27 @@
 
 namespace talus {
 
+namespace {
+
+// A box's corners: max above min along x and y, not below it along z (a 2D box has no z extent).
+void max_above_min(const ParamValues& v, Diagnostics& d) {
+  const Vec3 lo = v.vector("min"), hi = v.vector("max");
+  for (int a = 0; a < 3; ++a)
+    if (!(hi[a] >= lo[a]) || (a < 2 && hi[a] == lo[a])) {
+      d.error(v, "max", "must be greater than min in every component");
+      break;
+    }
+}
+
+}  // namespace
+
 void declare_shape(ParamSet& body) {
   auto b = body.one_of("shape").doc("the region the body occupies");
 
   ParamSet box{"box", "axis-aligned box"};
   box.vector("min").unit("m").doc("lower corner");
   box.vector("max").unit("m").doc("upper corner");
-  box.check([](const ParamValues& v, Diagnostics& d) {
-    const Vec3 lo = v.vector("min"), hi = v.vector("max");
-    for (int a = 0; a < 3; ++a)
-      if (hi[a] < lo[a] || (a < 2 && hi[a] == lo[a])) {
-        d.error(v, "max", "must be greater than min in every component");
-        break;
-      }
-  });
+  box.check(max_above_min);
   b.alternative("box", box);
 
   ParamSet sphere{"sphere", "sphere (a disc in 2D)"};
@@ -57,6 +64,7 @@ void declare_shape(ParamSet& body) {
   walls.vector("min").unit("m").doc("inner lower corner");
   walls.vector("max").unit("m").doc("inner upper corner");
   walls.string_list("open", {"-x", "+x", "-y", "+y", "-z", "+z"}).optional().doc("faces without a wall (default none)");
+  walls.check(max_above_min);
   b.alternative("box_walls", walls);
 
   ParamSet mesh{"mesh", "closed triangle mesh from an STL or OBJ file"};

@@ -1,5 +1,6 @@
 #include "talus/memory.hpp"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -51,6 +52,13 @@ std::uint64_t available_memory() {
   const std::uint64_t used_v1 = number_in("/sys/fs/cgroup/memory/memory.usage_in_bytes");
   for (auto [limit, used] : {std::pair{limit_v2, used_v2}, std::pair{limit_v1, used_v1}})
     if (limit > 0 && limit < (1ull << 62)) available = std::min(available, limit > used ? limit - used : 0);
+  // An address-space limit (ulimit -v) makes allocation fail past it, less what is mapped already.
+  rlimit as{};
+  if (getrlimit(RLIMIT_AS, &as) == 0 && as.rlim_cur != RLIM_INFINITY) {
+    const std::uint64_t mapped = number_in("/proc/self/statm") * static_cast<std::uint64_t>(sysconf(_SC_PAGESIZE));
+    const std::uint64_t limit = as.rlim_cur;
+    available = std::min(available, limit > mapped ? limit - mapped : 0);
+  }
   return available;
 }
 

@@ -50,6 +50,11 @@ TEST(Geometry, BoxWallsSurroundTheTankExceptOpenFaces) {
   }
 }
 
+TEST(Geometry, BoxWallsCornersMustBeInOrder) {
+  EXPECT_THROW(shape(R"({"shape": {"box_walls": {"min": [2147483648, 0], "max": [400, 1]}}})", 2), InputError);
+  EXPECT_THROW(shape(R"({"shape": {"box_walls": {"min": [0, 0, 9e15], "max": [1, 1, 1]}}})"), InputError);
+}
+
 TEST(Geometry, BoxWallsCannotBeFilled) {
   const ParamValues b = shape(R"({"shape": {"box_walls": {"min": [0, 0], "max": [1, 1]}}})", 2);
   EXPECT_THROW(fill_points("box_walls", b.alternative_values("shape"), 0.1, 2, {}, {}), InputError);

@@ -171,6 +171,16 @@ TEST(Refusal, AHugeDomainIsRefusedNamingIt) {
                          dir + "/out");
 }
 
+TEST(Refusal, AnAddressSpaceLimitCountsAsTheMemoryAvailable) {
+  // 4e6 particles, about 2.2 GiB by the estimate: within this machine, not within `ulimit -v` of 1.5 GiB.
+  const std::string dir = scratch("ulimit");
+  json scene = ballistic();
+  scene["bodies"][0]["dp"] = 2.5e-4;
+  const std::string path = write_scene(scene, dir);
+  expect_refused_quickly("ulimit -v 1500000 && " + exe + " run " + path + " --quiet --out " + dir + "/out", path,
+                         "/bodies/0/dp", dir + "/out");
+}
+
 TEST(Refusal, AllowLargeLetsASceneThroughTheEstimate) {
   // A scene the estimate refuses only because the machine is small would run with
   // --allow-large; here one that allocates nothing large shows the option is accepted
