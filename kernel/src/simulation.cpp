@@ -54,6 +54,18 @@ std::string vec_text(const Vec3& v, int dim) {
   return "(" + fixed(v.x) + ", " + fixed(v.y) + (dim == 3 ? ", " + fixed(v.z) : "") + ")";
 }
 
+// Outputs and checkpoints fall due on multiples of their interval. The
+// tolerance absorbs rounding in the sum of the steps, but is never a share of
+// the interval that would make every step due (an end of 1e308, a 1 ms interval).
+double schedule_eps(double end_time, double every) { return std::min(1e-9 * end_time, 1e-3 * every); }
+
+// The first multiple of `every` after `now` (beyond `next`), in one jump.
+double next_due(double next, double every, double now, double eps) {
+  if (next > now + eps) return next;
+  const double intervals = std::floor((now + eps - next) / every) + 1.0;
+  return std::max(next + intervals * every, std::nextafter(now + eps, HUGE_VAL));
+}
+
 }  // namespace
 
 Simulation::Simulation(PluginRegistry& registry, Scene scene) : registry_(registry), scene_(std::move(scene)) {
@@ -425,8 +437,8 @@ std::string Simulation::last_output() const {
 }
 
 void Simulation::write_due_outputs(bool force) {
-  const double eps = 1e-9 * std::max(world_.end_time, 1e-300);
   for (auto& w : writers_) {
+    const double eps = w.every_steps ? 0.0 : schedule_eps(world_.end_time, w.every);
     const bool due = w.every_steps ? world_.step >= w.next_step : world_.time >= w.next_time - eps;
     if (!due && !force) continue;
     w.writer->write(world_);
@@ -434,7 +446,7 @@ void Simulation::write_due_outputs(bool force) {
     if (w.every_steps) {
       while (w.next_step <= world_.step) w.next_step += w.every_steps;
     } else {
-      while (w.next_time <= world_.time + eps) w.next_time += w.every;
+      w.next_time = next_due(w.next_time, w.every, world_.time, eps);
     }
   }
 }
@@ -526,7 +538,7 @@ int Simulation::run(const RunOptions& options) {
     return name.str();
   };
   // Checkpoints fall on multiples of `every`, so a restarted run keeps the schedule.
-  const double time_eps = 1e-9 * world_.end_time;
+  const double time_eps = checkpoint_every > 0 ? schedule_eps(world_.end_time, checkpoint_every) : 0.0;
   double next_checkpoint_time =
       checkpoint_every > 0 ? (std::floor(world_.time / checkpoint_every + 1e-9) + 1.0) * checkpoint_every : 0.0;
 
@@ -571,8 +583,8 @@ int Simulation::run(const RunOptions& options) {
           (checkpoint_minutes > 0 && progress.elapsed() - wall_at_last_checkpoint >= 60.0 * checkpoint_minutes)) {
         checkpoint();
         wall_at_last_checkpoint = progress.elapsed();
-        while (checkpoint_every > 0 && next_checkpoint_time <= world_.time + time_eps)
-          next_checkpoint_time += checkpoint_every;
+        if (checkpoint_every > 0)
+          next_checkpoint_time = next_due(next_checkpoint_time, checkpoint_every, world_.time, time_eps);
       }
       std::string status;
       if (options.verbose)

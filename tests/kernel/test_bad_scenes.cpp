@@ -151,4 +151,19 @@ TEST(BadScenes, ABlowUpDuringTheRunEndsWithAnErrorLine) {
   EXPECT_EQ(r.run.rfind("error: step 0 (t = 0 s): block 'box' has a non-finite position", 0), 0u) << r.run;
 }
 
+TEST(BadScenes, AnEndTimeOf1e308KeepsOutputsAndCheckpointsOnTheirIntervals) {
+  // The tolerance for "due" once scaled with the end time: every step was due and the schedule never advanced.
+  json s = shipped("poiseuille_2d");
+  s["time"]["end"] = 1e308;
+  s["time"]["max_steps"] = 3;
+  s["checkpoint"] = {{"every", 1e-3}};
+  const std::string dir = std::string(TALUS_BINARY_DIR) + "/tests/bad_scenes_end_1e308";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  write_file(dir + "/scene.json", s.dump(1));
+  const auto r = run_command("timeout 120 " + std::string(TALUS_EXE) + " run " + dir + "/scene.json --quiet --out " + dir + "/out");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(dir + "/out/scene.h5part"));
+}
+
 }  // namespace
