@@ -27,7 +27,7 @@ void max_above_min(const ParamValues& v, Diagnostics& d) {
 }  // namespace
 
 void declare_shape(ParamSet& body) {
-  auto b = body.one_of("shape").doc("the region the body occupies");
+  auto b = body.one_of("shape").doc("the region the body occupies (a fluid body's must lie in the domain)");
 
   ParamSet box{"box", "axis-aligned box"};
   box.vector("min").unit("m").doc("lower corner");

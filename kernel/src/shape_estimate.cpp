@@ -103,10 +103,10 @@ double fill_count_estimate(const std::string& alt, const ParamValues& v, double 
     return 0.5 * std::abs(twice) / cell;
   }
   if (alt == "half_space") {
-    // The share of the lattice's box (the domain and one dp beyond, as
-    // fill_points makes it) behind the plane, counted on a coarse grid.
+    // The share of the domain (the body is clipped to it) behind the plane,
+    // counted on a coarse grid.
     const Vec3 x0 = v.vector("point"), n = v.vector("normal");
-    const Vec3 dlo_ = dlo, dhi_ = dhi + Vec3{dp, dp, dim == 3 ? dp : 0.0};
+    const Vec3 dlo_ = dlo, dhi_ = dhi;
     constexpr int k = 64;
     double behind = 0.0, total = 0.0;
     for (int i = 0; i < k; ++i)

@@ -140,6 +140,13 @@ TEST(BadScenes, PluginThatCannotBeLoadedHasOneErrorPrefix) {
   EXPECT_EQ(r.validate.find("error: ", 7), std::string::npos) << r.validate;
 }
 
+TEST(BadScenes, AFluidBodyOutsideTheDomain) {
+  // The run dropped the particles outside only at the first step, after building neighbour grids for them.
+  json s = shipped("sediment_bank_2d");
+  s["bodies"][15]["shape"] = {{"box", {{"min", {0, 0}}, {"max", {17.5, 4}}}}};
+  expect_refused(refuse("outside_domain", s), "/bodies/15/shape", "380590 of 383616 particles lie outside the domain (-0.06, 0) .. (1.202, 0.459)");
+}
+
 TEST(BadScenes, ABlowUpDuringTheRunEndsWithAnErrorLine) {
   // Valid input that cannot be integrated: the block leaves with a non-finite position at the first step.
   json s = shipped("buoyancy_floating");
