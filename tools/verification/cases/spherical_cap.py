@@ -24,8 +24,10 @@ REFERENCE = ("the seed's Table 2: simplified Janbu 1.25, simplified Bishop 1.30,
 KNOWN_DEVIATION = (
     "A rigid faceted cap does not stay inside the band: coarse facets interlock (a rigid rotation about the "
     "sphere's centre must lift some facets off their base) and raise F_s above 1.50; as the facets shrink the "
-    "through-going slip path decides, and F_s converges to a value just under simplified Janbu's 1.25. Issue 19 "
-    "stays open on it: deformable blocks, or the seed's displacement-jump criterion alone, are the next things to try.")
+    "through-going slip path decides, and F_s converges to a value just under simplified Janbu's 1.25. At the limit "
+    "the joints near the crest are open (the seed gives no tensile strength) and carry no cohesion, where limit "
+    "equilibrium keeps cohesion over the whole surface. Issue 19 stays open on it: deformable blocks, or the seed's "
+    "displacement-jump criterion alone, are the next things to try.")
 
 
 def configure(scene, segments, option):
