@@ -128,6 +128,60 @@ std::vector<Vec3> lattice(const Vec3& lo, const Vec3& hi, double dp, int dim, co
   return out;
 }
 
+// Indices i of the lattice points origin + (i + 1/2) dp, 0 <= i < n, that lie in [lo, hi]: first <= i < end.
+struct IndexRange {
+  long long first = 0, end = 1;
+  bool contains(long long i) const { return i >= first && i < end; }
+};
+
+IndexRange inside_indices(double origin, double lo, double hi, double dp, long long n) {
+  auto at = [&](long long i) { return origin + (i + 0.5) * dp; };
+  const double nd = static_cast<double>(n);
+  long long first = static_cast<long long>(std::clamp(std::ceil((lo - origin) / dp - 0.5), 0.0, nd));
+  while (first > 0 && at(first - 1) >= lo) --first;  // the same arithmetic as the points, not the estimate's
+  while (first < n && at(first) < lo) ++first;
+  long long end = static_cast<long long>(std::clamp(std::floor((hi - origin) / dp - 0.5) + 1.0, 0.0, nd));
+  end = std::max(end, first);
+  while (end > first && at(end - 1) > hi) --end;
+  while (end < n && at(end) <= hi) ++end;
+  return {first, end};
+}
+
+// The lattice over [olo, ohi] less the points in the inner box [lo, hi]
+// (the walls of a tank), in lattice order. Rows and planes inside the box
+// are passed over by index, so a tall tank with open sides costs its walls.
+std::vector<Vec3> box_wall_lattice(const Vec3& olo, const Vec3& ohi, const Vec3& lo, const Vec3& hi, double dp, int dim) {
+  long long n[3] = {1, 1, 1};
+  IndexRange inside[3];
+  for (int a = 0; a < dim; ++a) {
+    n[a] = std::max(0LL, std::llround((ohi[a] - olo[a]) / dp));
+    inside[a] = inside_indices(olo[a], lo[a], hi[a], dp, n[a]);
+  }
+  const bool rows_all_inside = inside[0].first == 0 && inside[0].end == n[0];
+  const bool planes_all_inside = rows_all_inside && inside[1].first == 0 && inside[1].end == n[1];
+  std::vector<Vec3> out;
+  for (long long k = 0; k < n[2]; ++k) {
+    const bool z_inside = inside[2].contains(k);
+    if (z_inside && planes_all_inside) {  // no wall crosses this plane, nor the planes up to the box's far face
+      k = inside[2].end - 1;
+      continue;
+    }
+    for (long long j = 0; j < n[1]; ++j) {
+      const bool row_inside = z_inside && inside[1].contains(j);
+      if (row_inside && rows_all_inside) {
+        j = inside[1].end - 1;
+        continue;
+      }
+      const double y = olo.y + (j + 0.5) * dp, z = dim == 3 ? olo.z + (k + 0.5) * dp : 0.0;
+      for (long long i = 0; i < n[0]; ++i) {
+        if (row_inside && inside[0].contains(i)) i = inside[0].end;
+        if (i < n[0]) out.push_back({olo.x + (i + 0.5) * dp, y, z});
+      }
+    }
+  }
+  return out;
+}
+
 TriangleMesh scaled_mesh(const ParamValues& v) {
   TriangleMesh m = v.read_file("file", [](const std::string& f) { return load_mesh(f); });
   const double s = v.real("scale");
@@ -267,16 +321,7 @@ std::vector<Vec3> wall_points(const std::string& alt, const ParamValues& v, doub
       if (!is_open(minus[a])) olo[a] -= thickness;
       if (!is_open(plus[a])) ohi[a] += thickness;
     }
-    // Kept: outside the inner box. A point inside is dropped with the points
-    // nearer to it than the box's faces.
-    return lattice(olo, ohi, dp, dim, [&](const Vec3& p) {
-      double depth = 1e300;
-      for (int a = 0; a < dim; ++a) {
-        if (p[a] < lo[a] || p[a] > hi[a]) return Verdict{true};
-        depth = std::min({depth, p[a] - lo[a], hi[a] - p[a]});
-      }
-      return Verdict{false, points_within(depth, dp)};
-    });
+    return box_wall_lattice(olo, ohi, lo, hi, dp, dim);
   }
   // Kept: inside the solid, less than `thickness` from its surface.
   const Solid s = solid(alt, v, dim, dlo, dhi);

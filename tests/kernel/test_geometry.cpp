@@ -156,6 +156,16 @@ TEST(Geometry, SkippingKeepsEveryPointOfBoxWallsAndOfAHalfSpace) {
                      }));
 }
 
+TEST(Geometry, PlatesOfAChannelWithOpenSidesCostThePlatesAtAnyHeight) {
+  // Only the bottom and top plates: 2 layers of 8 each; the 2e13 rows between them hold nothing.
+  const ParamValues b = shape(R"({"shape": {"box_walls": {"min": [0, 0], "max": [0.0004, 1e9], "open": ["-x", "+x"]}}})", 2);
+  const auto pts = wall_points("box_walls", b.alternative_values("shape"), 5e-5, 2, 2, {}, {});
+  EXPECT_EQ(pts.size(), 2u * 2u * 8u);
+  const ParamValues c =
+      shape(R"({"shape": {"box_walls": {"min": [0, 0, 0], "max": [1, 1, 1e9], "open": ["-x", "+x", "-y", "+y"]}}})");
+  EXPECT_EQ(wall_points("box_walls", c.alternative_values("shape"), 0.1, 3, 1, {}, {}).size(), 2u * 10u * 10u);
+}
+
 TEST(Geometry, WallsOfALargeTankCostTheirSurfaceNotTheTankVolume) {
   // 20 km by 10 km at dp = 0.05: 8e10 lattice points inside (minutes to test one by one), 1.6e6 wall particles.
   const ParamValues b = shape(R"({"shape": {"box_walls": {"min": [0, 0], "max": [20000, 10000], "open": ["+y"]}}})", 2);
