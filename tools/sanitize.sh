@@ -72,7 +72,9 @@ else
 fi
 if [ "$fuzz_count" -gt 0 ]; then
   # No address-space limit: ASan reserves terabytes of shadow memory up front.
-  /usr/bin/python3 "$root/tools/fuzz_scenes.py" --short --seed 1 --count "$fuzz_count" --talus "$build/bin/talus" --scenes "$scenes" \
+  # Its allocator is capped instead (it returns null past the cap, which
+  # talus ends as out of memory), so that no mutant takes the machine's memory.
+  ASAN_OPTIONS="$ASAN_OPTIONS:malloc_limit_mb=6144:soft_rss_limit_mb=8192" /usr/bin/python3 "$root/tools/fuzz_scenes.py" --short --seed 1 --count "$fuzz_count" --talus "$build/bin/talus" --scenes "$scenes" \
     --memory-mib 0 --timeout 120 --failures "$build/fuzz-failures" || status=1
 fi
 exit $status

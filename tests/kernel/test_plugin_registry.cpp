@@ -119,7 +119,7 @@ TEST(PluginRegistry, ARefusedPluginLeavesTheOthersUsable) {
 
 TEST(PluginRegistry, ManifestRecordsTheBuildAndTheLayout) {
   const nlohmann::json m = PluginRegistry::describe_library(plugins + "/good/libtalus_test_good.so");
-  EXPECT_EQ(m.at("build_type"), "Release");
+  EXPECT_EQ(m.at("build_type"), TALUS_TEST_BUILD_TYPE);
   EXPECT_EQ(m.at("optimised"), true);
   EXPECT_EQ(m.at("compiler"), TALUS_COMPILER_ID);
   EXPECT_EQ(m.at("layout").at("sizeof(ViscosityInputs)"), 24);
