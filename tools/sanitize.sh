@@ -11,7 +11,7 @@
 #
 # Options: --build DIR (default build-asan), --jobs N (default 2), --targets
 # "T..." (default all), --tests REGEX (ctest -R; default: label unit),
-# --fuzz-count N (default 1000; 0 skips the fuzzer), --scenes DIR (default
+# --fuzz-count N (default 2000, as ctest's fuzz.scenes; 0 skips the fuzzer), --scenes DIR (default
 # share/scenes), --no-build.
 # A full build takes long on two cores: build a subset first to iterate.
 set -eu
@@ -21,7 +21,7 @@ build="$root/build-asan"
 jobs=2
 targets=""
 tests=""
-fuzz_count=1000
+fuzz_count=2000
 scenes="$root/share/scenes"
 do_build=1
 while [ $# -gt 0 ]; do
