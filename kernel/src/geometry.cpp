@@ -138,7 +138,8 @@ IndexRange inside_indices(double origin, double lo, double hi, double dp, long l
   auto at = [&](long long i) { return origin + (i + 0.5) * dp; };
   const double nd = static_cast<double>(n);
   long long first = static_cast<long long>(std::clamp(std::ceil((lo - origin) / dp - 0.5), 0.0, nd));
-  while (first > 0 && at(first - 1) >= lo) --first;  // the same arithmetic as the points, not the estimate's
+  // From the estimate, moved by the points' own arithmetic so that the range matches p < lo and p > hi exactly.
+  while (first > 0 && at(first - 1) >= lo) --first;
   while (first < n && at(first) < lo) ++first;
   long long end = static_cast<long long>(std::clamp(std::floor((hi - origin) / dp - 0.5) + 1.0, 0.0, nd));
   end = std::max(end, first);
