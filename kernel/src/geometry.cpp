@@ -7,10 +7,19 @@
 #include <cmath>
 #include <functional>
 
+#include "shape_mesh.hpp"
 #include "talus/error.hpp"
 #include "talus/mesh.hpp"
 
 namespace talus {
+
+TriangleMesh scaled_mesh(const ParamValues& v) {
+  TriangleMesh m = v.read_file("file", [](const std::string& f) { return load_mesh(f); });
+  const double s = v.real("scale");
+  const Vec3 o = v.vector("offset");
+  for (auto& p : m.vertices) p = p * s + o;
+  return m;
+}
 
 namespace {
 
@@ -181,14 +190,6 @@ std::vector<Vec3> box_wall_lattice(const Vec3& olo, const Vec3& ohi, const Vec3&
     }
   }
   return out;
-}
-
-TriangleMesh scaled_mesh(const ParamValues& v) {
-  TriangleMesh m = v.read_file("file", [](const std::string& f) { return load_mesh(f); });
-  const double s = v.real("scale");
-  const Vec3 o = v.vector("offset");
-  for (auto& p : m.vertices) p = p * s + o;
-  return m;
 }
 
 // A solid shape: its bounding box, inside(p), and the distance from p to its

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <vector>
 
+#include "shape_mesh.hpp"
 #include "talus/mesh.hpp"
 
 namespace talus {
@@ -52,10 +53,7 @@ struct MeshMeasure {
 };
 
 MeshMeasure measure_mesh(const ParamValues& v) {
-  TriangleMesh m = v.read_file("file", [](const std::string& f) { return load_mesh(f); });
-  const double s = v.real("scale");
-  const Vec3 o = v.vector("offset");
-  for (auto& p : m.vertices) p = p * s + o;
+  const TriangleMesh m = scaled_mesh(v);
   MeshMeasure r;
   m.bounds(r.box.lo, r.box.hi);
   for (const auto& t : m.triangles) {
