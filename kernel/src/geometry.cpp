@@ -303,8 +303,18 @@ std::vector<Vec3> fill_points(const std::string& alt, const ParamValues& v, doub
   if (alt == "box_walls") v.fail("", "box_walls has no inside to fill; use box for a fluid body");
   const Solid s = solid(alt, v, dim, dlo, dhi);
   if (alt == "box") return lattice(s.lo, s.hi, dp, dim, [](const Vec3&) { return Verdict{true}; });
+  // A half-space is what lies in the domain behind its plane; its lattice box
+  // (the domain, as for any bounding box) reaches dp/2 beyond the domain.
+  const bool clip_to_domain = alt == "half_space";
+  auto beyond_domain = [&](const Vec3& p) {
+    if (!clip_to_domain) return false;
+    for (int a = 0; a < dim; ++a)
+      if (p[a] < dlo[a] || p[a] > dhi[a]) return true;
+    return false;
+  };
   // Anchor at the bounding box so the lattice is the same as for a box.
   return lattice(s.lo, s.hi + Vec3{dp, dp, dp}, dp, dim, [&](const Vec3& p) {
+    if (beyond_domain(p)) return Verdict{false};  // no skip: the points after it may be back in the domain
     return s.inside(p) ? Verdict{true} : Verdict{false, points_within(s.distance(p), dp)};
   });
 }

@@ -222,15 +222,13 @@ void Simulation::build_bodies() {
     if (body.kind == BodyKind::fluid) {
       const Material& m = world_.materials[body.material];
       const std::string& alt = v.alternative("shape");
-      auto points = fill_points(alt, v.alternative_values("shape"), body.dp, world_.dim, world_.lo, world_.hi);
+      const auto points = fill_points(alt, v.alternative_values("shape"), body.dp, world_.dim, world_.lo, world_.hi);
+      // A shape must lie in the domain: the run would drop what is outside.
       auto outside = [&](const Vec3& q) {
         for (int a = 0; a < world_.dim; ++a)
           if (q[a] < world_.lo[a] || q[a] > world_.hi[a]) return true;
         return false;
       };
-      // A half-space is what lies in the domain behind its plane; any other
-      // shape must lie in the domain (the run would drop what is outside).
-      if (alt == "half_space") std::erase_if(points, outside);
       if (points.empty()) v.fail("shape", "the shape holds no particle at dp = " + text::number(body.dp));
       if (const auto n_out = std::count_if(points.begin(), points.end(), outside))
         v.fail("shape", "fluid '" + body.name + "': " + std::to_string(n_out) + " of " + std::to_string(points.size()) +
