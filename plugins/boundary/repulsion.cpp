@@ -10,7 +10,7 @@
 namespace talus::boundary {
 
 ParamSet Repulsion::describe() {
-  ParamSet p{"repulsion", "penalty walls F = (K_s d - (v.n) K_d) n against planes and meshes (rock-fluid seed eq. 22)"};
+  ParamSet p{"repulsion", "penalty walls F = max(0, K_s d - (v.n) K_d) n against planes and meshes (rock-fluid seed eq. 22)"};
   p.real("stiffness").unit("N/m").greater_than(0.0).doc("penalty stiffness K_s per fluid particle");
   p.real("damping").unit("N s/m").min(0.0).default_value(0.0).doc("damping K_d on the normal velocity");
   p.real("distance").unit("m").greater_than(0.0).optional().doc(
@@ -19,8 +19,7 @@ ParamSet Repulsion::describe() {
 }
 
 Repulsion::Repulsion(const ParamValues& v)
-    : ks_(v.real("stiffness")),
-      kd_(v.real("damping")),
+    : spring_{v.real("stiffness"), v.real("damping")},
       has_distance_(v.has("distance")),
       distance_(v.has("distance") ? v.real("distance") : 0.0) {}
 
@@ -73,7 +72,7 @@ void Repulsion::bind(World& world, const sph::FluidSettings&) {
 
 void Repulsion::interact(World&, const sph::FluidView& fluid, const sph::FluidRates& rates) {
   const std::size_t n = fluid.position.size();
-  const double ks = ks_, kd = kd_;
+  const sph::PenaltySpring spring = spring_;
   const Plane* planes = planes_.data();
   const std::size_t np = planes_.size();
 #pragma omp parallel for schedule(static) if (n >= 4096)
@@ -83,7 +82,7 @@ void Repulsion::interact(World&, const sph::FluidView& fluid, const sph::FluidRa
     for (std::size_t k = 0; k < np; ++k) {
       const Plane& pl = planes[k];
       const double d = pl.r0 - dot(x - pl.point, pl.normal);
-      if (d > 0.0) force += pl.normal * (ks * d - dot(v, pl.normal) * kd);
+      if (d > 0.0) force += pl.normal * spring.normal_force(d, dot(v, pl.normal));
     }
     for (const Mesh& m : meshes_) {
       bool near = true;
@@ -97,17 +96,13 @@ void Repulsion::interact(World&, const sph::FluidView& fluid, const sph::FluidRa
       Vec3 nrm = dist > 0 ? (x - closest) / dist : Vec3{};
       if (inside) nrm = -nrm;
       const double d = inside ? m.r0 + dist : m.r0 - dist;
-      force += nrm * (ks * d - dot(v, nrm) * kd);
+      force += nrm * spring.normal_force(d, dot(v, nrm));
     }
     rates.acceleration[i] += force / fluid.mass[i];
   }
 }
 
-double Repulsion::stable_time_step(const World&) const {
-  double dt = 0.4 * std::sqrt(min_mass_ / ks_);
-  if (kd_ > 0) dt = std::min(dt, 0.2 * min_mass_ / kd_);
-  return dt;
-}
+double Repulsion::stable_time_step(const World&) const { return spring_.stable_time_step(min_mass_); }
 
 void Repulsion::describe_passes(StagePlan& plan) const {
   std::string names;

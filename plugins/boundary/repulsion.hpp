@@ -1,16 +1,17 @@
 // Penalty "repulsion" walls of the rock-fluid seed (§4, eq. 22): a fluid
-// particle closer to a wall surface than the activation distance r0 feels
-//   F = (K_s d - (v . n) K_d) n,   d = r0 - (distance to the surface),
-// with n the unit normal pointing into the fluid and v the particle velocity
+// particle closer to a wall surface than the activation distance r0 feels the
+// penalty spring of sph/penalty.hpp with d = r0 - (distance to the surface),
+// n the unit normal pointing into the fluid and v the particle velocity
 // relative to the (fixed) wall. No wall particles: the walls are planes
 // (half_space, the closed faces of box_walls) or closed triangle meshes.
-// The spring bounds the time step: dt <= 0.4 sqrt(m/K_s) (0.2 of 2/omega).
+// The spring bounds the time step (PenaltySpring::stable_time_step).
 #pragma once
 
 #include <vector>
 
 #include "talus/mesh.hpp"
 #include "talus/sph/boundary_pass.hpp"
+#include "talus/sph/penalty.hpp"
 
 namespace talus::boundary {
 
@@ -40,7 +41,7 @@ class Repulsion final : public sph::SphBoundary {
   const std::vector<Plane>& planes() const { return planes_; }
 
  private:
-  double ks_, kd_;
+  sph::PenaltySpring spring_;
   bool has_distance_;
   double distance_;
   std::vector<Plane> planes_;

@@ -4,8 +4,6 @@
 #include <cmath>
 #include <cstdio>
 
-#include <omp.h>
-
 #include "block_pass.hpp"
 #include "fluid_fit.hpp"
 #include "talus/blocks.hpp"
@@ -182,8 +180,6 @@ void BlockParticles::bind(World& world, const sph::FluidSettings& settings) {
   period_ = periods(world);
   cells_.assign(blocks_.size(), sph::NeighbourGrid{});
   for (auto& c : cells_) c.configure(world.dim, settings.lo, settings.hi, radius, world.periodic);
-  thread_force_.assign(omp_get_max_threads(), Vec3{});
-  thread_torque_.assign(omp_get_max_threads(), Vec3{});
   inv_rho_.assign(s.size(), 0.0);  // indexed like world.boundary (only my range is used)
   ledger_.reset(blocks_.size());
   place(world);
@@ -275,28 +271,26 @@ void BlockParticles::interact(World& world, const sph::FluidView& fluid, const s
                        c.data() + first, m.data() + first, mat.data() + first};
     nb.inv_density = inv_rho_.data() + first;
     const BlockPassInput in{fluid, rates, cells_[k], xb, kernel, b.bounds_lo[blocks_[k]], b.bounds_hi[blocks_[k]],
-                            b.position[blocks_[k]], period_, mu, continuity, thread_force_.data(),
-                            thread_torque_.data()};
+                            b.position[blocks_[k]], period_, mu, continuity};
     const sph::PressureForce pressure{nb};
     const sph::Continuity cont{nb};
+    BlockReaction reaction;
+    std::uint64_t fluid_pairs = 0;
     switch (settings_.viscosity) {
       case sph::ViscosityModel::artificial:
-        pairs += block_pass(in, pressure, sph::ArtificialViscosity{nb, settings_.alpha * kernel.h()},
-                            cont);
+        reaction = block_pass(in, fluid_pairs, pressure, sph::ArtificialViscosity{nb, settings_.alpha * kernel.h()},
+                              cont);
         break;
       case sph::ViscosityModel::laminar:
-        pairs += block_pass(in, pressure, sph::LaminarViscosity<true>{nb, mu, sph::laminar_eta2(kernel.h())}, cont);
+        reaction = block_pass(in, fluid_pairs, pressure,
+                              sph::LaminarViscosity<true>{nb, mu, sph::laminar_eta2(kernel.h())}, cont);
         break;
       case sph::ViscosityModel::laplacian:
-        pairs += block_pass(in, pressure, sph::LaplacianViscosity{nb, &kernel}, cont);
+        reaction = block_pass(in, fluid_pairs, pressure, sph::LaplacianViscosity{nb, &kernel}, cont);
         break;
     }
-    Vec3 force{}, torque{};
-    for (std::size_t t = 0; t < thread_force_.size(); ++t) {
-      force += thread_force_[t];
-      torque += thread_torque_[t];
-    }
-    ledger_.set(k, force, torque);
+    pairs += fluid_pairs;
+    ledger_.set(k, reaction.force, reaction.torque);
 
     // Block side: continuity of each block particle with its fluid neighbours.
     struct WallSums {

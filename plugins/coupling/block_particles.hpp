@@ -71,7 +71,6 @@ class BlockParticles final : public sph::SphBoundary {
   sph::FluidSettings settings_;
   Vec3 period_{};  // domain length on periodic axes (minimum-image lever arms, block_pass.hpp)
   std::vector<sph::NeighbourGrid> cells_;           // per block
-  std::vector<Vec3> thread_force_, thread_torque_;
   std::vector<double> inv_rho_;           // 1/rho of my particles, refreshed per interact (scratch)
   ImpulseLedger ledger_;
   std::uint64_t pairs_ = 0;

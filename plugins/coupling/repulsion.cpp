@@ -15,7 +15,7 @@
 namespace talus::coupling {
 
 ParamSet Repulsion::describe() {
-  ParamSet p{"block_repulsion", "penalty repulsion F = (Ks d - (v.n) Kd) n between the fluid and a DDA block's faces "
+  ParamSet p{"block_repulsion", "penalty repulsion F = max(0, Ks d - (v.n) Kd) n between the fluid and a DDA block's faces "
                           "(rock-fluid seed eq. 22); the block receives the reaction"};
   p.real("stiffness").unit("N/m").greater_than(0.0).optional()
       .doc("penalty stiffness K_s per fluid particle (default m c0^2 / r0^2: a particle at the sound speed stops "
@@ -53,8 +53,8 @@ void Repulsion::bind(World& world, const sph::FluidSettings&) {
   if (ks_param_ <= 0.0 && !(c0 > 0.0))
     world.bodies[bodies_.front()].params.fail("boundary", "block_repulsion: give \"stiffness\" (material '" + mat.name +
                                                               "' has no EOS for the default)");
-  ks_ = ks_param_ > 0.0 ? ks_param_ : m_ref * c0 * c0 / (r0_ * r0_);
-  kd_ = kd_param_ >= 0.0 ? kd_param_ : std::sqrt(ks_ * m_ref);
+  spring_.stiffness = ks_param_ > 0.0 ? ks_param_ : m_ref * c0 * c0 / (r0_ * r0_);
+  spring_.damping = kd_param_ >= 0.0 ? kd_param_ : std::sqrt(spring_.stiffness * m_ref);
   clear_fluid_inside(world, blocks_, 0.5 * world.dp * (1.0 - 1e-6));
   const auto mass = world.fluid.scalar("mass");
   min_mass_ = mass.empty() ? m_ref : *std::min_element(mass.begin(), mass.end());
@@ -63,18 +63,13 @@ void Repulsion::bind(World& world, const sph::FluidSettings&) {
   ledger_.reset(blocks_.size());
 }
 
-double Repulsion::stable_time_step(const World&) const {
-  // Damped spring on the lightest particle: dt < 2/w (sqrt(1 + z^2) - z), with a safety factor 0.5.
-  if (!(ks_ > 0.0)) return std::numeric_limits<double>::infinity();
-  const double w = std::sqrt(ks_ / min_mass_);
-  const double z = kd_ / (2.0 * std::sqrt(ks_ * min_mass_));
-  return 0.5 * 2.0 / w * (std::sqrt(1.0 + z * z) - z);
-}
+double Repulsion::stable_time_step(const World&) const { return spring_.stable_time_step(min_mass_); }
 
 void Repulsion::interact(World& world, const sph::FluidView& fluid, const sph::FluidRates& rates) {
   const BlockSet& b = *world.blocks;
   const std::int64_t n = static_cast<std::int64_t>(fluid.position.size());
-  const double r0 = r0_, ks = ks_, kd = kd_;
+  const double r0 = r0_;
+  const sph::PenaltySpring spring = spring_;
   std::uint64_t pairs = 0;
   for (std::size_t k = 0; k < blocks_.size(); ++k) {
     const std::size_t blk = blocks_[k];
@@ -112,7 +107,7 @@ void Repulsion::interact(World& world, const sph::FluidView& fluid, const sph::F
         ++pairs;
         const Vec3 nf = nrm[face];
         const Vec3 v_rel = fluid.velocity[ii] - (V + cross(w, x - X));
-        const double fn = ks * (r0 - s) - dot(v_rel, nf) * kd;
+        const double fn = spring.normal_force(r0 - s, dot(v_rel, nf));
         if (fn <= 0.0) continue;
         const Vec3 on_fluid = nf * fn;
         rates.acceleration[ii] += on_fluid / fluid.mass[ii];

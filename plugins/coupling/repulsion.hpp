@@ -1,11 +1,10 @@
 // `block_repulsion`: penalty repulsion between fluid particles and a DDA block's faces
-// (rock-fluid seed §4, eq. 22):  F = (K_s d - (v.n) K_d) n  on a fluid
-// particle, with d = r0 - s the penetration into a layer of thickness r0
+// (rock-fluid seed §4, eq. 22): the penalty spring of sph/penalty.hpp on a
+// fluid particle, with d = r0 - s the penetration into a layer of thickness r0
 // outside the block (s: signed distance to the nearest face plane, the
 // largest of the face-plane distances, so a particle inside the block is
 // pushed out through its nearest face), n that face's outward normal and v
-// the particle's velocity relative to the block's surface. The force is only
-// repulsive (max(0, .)): a departing particle is never pulled back.
+// the particle's velocity relative to the block's surface.
 // Reaction: the block gets -F at the particle, summed once per step
 // (block_link.hpp).
 #pragma once
@@ -14,6 +13,7 @@
 
 #include "block_link.hpp"
 #include "talus/sph/boundary_pass.hpp"
+#include "talus/sph/penalty.hpp"
 
 namespace talus::coupling {
 
@@ -35,14 +35,15 @@ class Repulsion final : public sph::SphBoundary {
   std::size_t blocks() const { return blocks_.size(); }
   std::size_t block_index(std::size_t k) const { return blocks_[k]; }
   const ImpulseLedger& ledger() const { return ledger_; }
-  double stiffness() const { return ks_; }
-  double damping() const { return kd_; }
+  double stiffness() const { return spring_.stiffness; }
+  double damping() const { return spring_.damping; }
   double distance() const { return r0_; }
 
  private:
   double ks_param_ = 0.0, kd_param_ = -1.0, r0_param_ = 0.0;
   std::string material_name_;
-  double ks_ = 0.0, kd_ = 0.0, r0_ = 0.0, min_mass_ = 0.0;
+  sph::PenaltySpring spring_;
+  double r0_ = 0.0, min_mass_ = 0.0;
   std::vector<int> bodies_;
   std::vector<std::string> names_;
   std::vector<std::size_t> blocks_;

@@ -462,7 +462,7 @@ void DdaStage::stop_blocks(World& world) {
   started_ = false;
 }
 
-double DdaStage::stable_time_step(const World& /*world*/) {
+double DdaStage::stable_time_step(World& /*world*/) {
   return subcycle_ ? std::numeric_limits<double>::infinity() : dt_stable_;
 }
 

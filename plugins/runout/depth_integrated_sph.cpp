@@ -9,6 +9,7 @@
 #include "follow_surface.hpp"
 #include "talus/output_name.hpp"
 #include "talus/error.hpp"
+#include "talus/sph/pair_loop.hpp"
 #include "talus/world.hpp"
 
 namespace talus::runout {
@@ -329,7 +330,7 @@ void DepthIntegratedSph::sum_depth(World& world) {
   }
 }
 
-double DepthIntegratedSph::stable_time_step(const World& world) {
+double DepthIntegratedSph::stable_time_step(World& world) {
   const ParticleStore& s = world.fluid;
   if (s.size() == 0) return inf;
   auto depth = s.scalar("depth");
@@ -408,7 +409,7 @@ void DepthIntegratedSph::advance(World& world, double dt) {
       const double approach = dot(vel[i] - vel[j], dx);
       if (viscosity > 0.0 && approach < 0.0) {
         const double lm = 0.5 * (li + lj);
-        const double mu = lm * approach / (r2 + 0.01 * lm * lm);
+        const double mu = lm * approach / (r2 + sph::pair_eta2(lm));
         const double c = 0.5 * (wave_[i] + wave_[j]);
         f -= viscosity * c * mu / (0.5 * (sigma_[i] + sigma_[j])) * 0.5 * (wi + wj);
       }

@@ -264,7 +264,7 @@ void StrengthReduction::locate_monitors(const World& world) {
   }
 }
 
-double StrengthReduction::stable_time_step(const World& world) {
+double StrengthReduction::stable_time_step(World& world) {
   if (loaded_ && !search_.searching()) return std::numeric_limits<double>::infinity();
   return world.end_time / trial_budget_;
 }

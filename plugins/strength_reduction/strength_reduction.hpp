@@ -39,7 +39,7 @@ class StrengthReduction final : public Stage {
   explicit StrengthReduction(const ParamValues& v);
 
   void setup(World& world) override;
-  double stable_time_step(const World& world) override;
+  double stable_time_step(World& world) override;
   void advance(World& world, double dt) override;
   StagePlan plan(const World& world) const override;
   std::string status(const World& world) const override;

@@ -99,7 +99,6 @@ void WcsphStage::setup(World& world) {
   if (!(h_ > 0.0)) params_.fail("", "the wcsph stage needs a smoothing kernel: add \"kernel\": {\"type\": ...} to the scene");
   if (viscosity_ == sph::ViscosityModel::laplacian && !world.kernel.has_laplacian())
     params_.fail("viscosity", "'laplacian' needs a kernel with a Laplacian; allowed with kernel 'muller'");
-  eta2_ = 0.01 * h_ * h_;
 
   ParticleStore& s = world.fluid;
   for (const FieldInfo* info : {&field_velocity, &field_density, &field_pressure, &field_mass, &field_sound_speed,
@@ -191,7 +190,7 @@ void WcsphStage::setup(World& world) {
     }
   cells_.configure(world.dim, lo, hi, radius, world.periodic);
 
-  settings_ = sph::FluidSettings{&world.kernel, viscosity_, alpha_, eta2_, material_mu_,
+  settings_ = sph::FluidSettings{&world.kernel, viscosity_, alpha_, material_mu_,
                                  density_ == DensityMode::summation, lo, hi, per_particle_viscosity_};
   world.refresh_material_index();
   update_pressure(world);
@@ -212,9 +211,9 @@ bool WcsphStage::rates_current(const World& world) const {
   return rates_valid_ && rates_step_ == world.step && rates_time_ == world.time && rates_size_ == world.fluid.size();
 }
 
-double WcsphStage::stable_time_step(const World& world) {
-  World& w = const_cast<World&>(world);  // the rates at t^n are computed once and reused by advance()
-  if (!rates_current(world)) compute_rates(w);
+double WcsphStage::stable_time_step(World& world) {
+  // The rates at t^n are computed once, here, and reused by advance().
+  if (!rates_current(world)) compute_rates(world);
   const auto a = world.fluid.vector("acceleration");
   const auto c = world.fluid.scalar("sound_speed");
   const auto visc = world.fluid.scalar("visc_rate");

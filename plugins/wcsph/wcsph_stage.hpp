@@ -42,7 +42,7 @@ class WcsphStage final : public Stage {
   explicit WcsphStage(const ParamValues& v);
 
   void setup(World& world) override;
-  double stable_time_step(const World& world) override;
+  double stable_time_step(World& world) override;
   void advance(World& world, double dt) override;
   StagePlan plan(const World& world) const override;
   // "rho dev X% (worst Y% at t = T s)": the current max |rho/rho0 - 1| and its
@@ -94,7 +94,7 @@ class WcsphStage final : public Stage {
   ParamValues params_;
 
   // Set up once.
-  double h_ = 0.0, eta2_ = 0.0, c0_max_ = 0.0, nu_max_ = 0.0;
+  double h_ = 0.0, c0_max_ = 0.0, nu_max_ = 0.0;
   std::vector<double> material_mu_;    // Pa s, per material
   std::vector<double> material_rho0_;  // kg/m^3, per material
   std::vector<int> fluid_materials_;   // materials with fluid particles and an EOS

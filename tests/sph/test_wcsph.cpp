@@ -183,7 +183,24 @@ TEST(Repulsion, ForceLawOnOneParticle) {
   const Vec3 a = s.world.fluid.vector("acceleration")[0];
   EXPECT_NEAR(a.y, (1000.0 * (0.04 - 0.025) + 1.0 * 2.0) / m, 1e-9);
   EXPECT_NEAR(a.x, 0.0, 1e-12);
-  EXPECT_NEAR(wall->stable_time_step(s.world), std::min(0.4 * std::sqrt(m / 1000.0), 0.2 * m / 2.0), 1e-12);
+  // 0.2 of the critical step of the damped spring, 2/w (sqrt(1 + z^2) - z).
+  const double w = std::sqrt(1000.0 / m), z = 2.0 / (2.0 * std::sqrt(1000.0 * m));
+  EXPECT_NEAR(wall->stable_time_step(s.world), 0.2 * 2.0 / w * (std::sqrt(1.0 + z * z) - z), 1e-12);
+}
+
+// The penalty spring only pushes: a particle leaving the layer faster than the
+// spring pushes it (K_d v > K_s d) feels no force, and is not pulled back.
+TEST(Repulsion, NeverPullsALeavingParticle) {
+  SphWorld s(2, {0, 0, 0}, {1, 1, 0}, 0.05);
+  s.world.gravity = {};
+  const int water = s.water(20.0);
+  s.fluid_box(water, {0.5, 0.0, 0}, {0.55, 0.05, 0}, false, {0.0, 10.0, 0.0});  // K_d v = 20 > K_s d = 15
+  ASSERT_EQ(s.world.fluid.size(), 1u);
+  s.repulsion_wall(R"({"half_space": {"point": [0, 0], "normal": [0, 1]}})",
+                   R"({"stiffness": 1000, "damping": 2, "distance": 0.04})");
+  auto& stage = s.make_stage();
+  stage.compute_rates(s.world);
+  EXPECT_EQ(s.world.fluid.vector("acceleration")[0].y, 0.0);
 }
 
 // A column held by repulsion walls (box_walls) stays in the tank.

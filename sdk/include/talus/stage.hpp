@@ -29,8 +29,10 @@ class TALUS_API Stage : public Model {
   // Registers fields, checks the bodies and materials it handles (throwing
   // InputError with the JSON pointer on a semantic problem), allocates.
   virtual void setup(World& world) = 0;
-  // Largest stable dt for the current state (infinity if no limit).
-  virtual double stable_time_step(const World& world) = 0;
+  // Largest stable dt for the current state (infinity if no limit). A stage
+  // whose bound needs its rates (accelerations) may evaluate them here, into
+  // its fields, for the advance() that follows to reuse.
+  virtual double stable_time_step(World& world) = 0;
   // Advances this stage's state from world.time to world.time + dt.
   virtual void advance(World& world, double dt) = 0;
   virtual StagePlan plan(const World& world) const = 0;

@@ -28,7 +28,7 @@ class Ballistic final : public talus::Stage {
     world.fluid.require({"acceleration", talus::FieldType::vector, "m/s^2", true, false});
     if (scratch_bytes_ > 0) scratch_.resize(static_cast<std::size_t>(scratch_bytes_));
   }
-  double stable_time_step(const talus::World&) override { return dt_; }
+  double stable_time_step(talus::World&) override { return dt_; }
   void advance(talus::World& world, double dt) override {
     auto x = world.fluid.position();
     auto u = world.fluid.vector("velocity");

@@ -7,7 +7,7 @@ class Other final : public talus::Stage {
   static talus::ParamSet describe() { return {"ballistic", "a second stage with a taken name"}; }
   explicit Other(const talus::ParamValues&) {}
   void setup(talus::World&) override {}
-  double stable_time_step(const talus::World&) override { return 1.0; }
+  double stable_time_step(talus::World&) override { return 1.0; }
   void advance(talus::World&, double) override {}
   talus::StagePlan plan(const talus::World&) const override { return {}; }
 };

@@ -42,7 +42,6 @@ struct FluidSettings {
   const KernelTable* kernel = nullptr;
   ViscosityModel viscosity = ViscosityModel::artificial;
   double alpha = 0.01;                  // artificial viscosity coefficient
-  double eta2 = 0.0;                    // (0.1 h)^2, regularises 1/r^2 terms
   std::vector<double> material_mu;      // dynamic viscosity per material, Pa s (laminar)
   bool summation_density = false;
   Vec3 lo, hi;                          // bounds the fluid cell list covers

@@ -16,12 +16,19 @@
 //
 // A term is any type with `static constexpr bool uses_value, uses_gradient`
 // and `template <class Sums> void pair(const sph::Pair&, Sums&) const`.
+//
+// A pass that also sums over particles (the force and torque on a body) is a
+// reducing_pair_pass: finish(i, sums, acc) adds to a per-thread accumulator,
+// and the partials are added in thread order, so the total is reproducible
+// for a given thread count.
 #pragma once
 
 #include <cmath>
 #include <cstdint>
 #include <span>
 #include <tuple>
+
+#include <omp.h>
 
 #include "talus/cell_list.hpp"
 #include "talus/sph/neighbour_grid.hpp"
@@ -39,9 +46,13 @@ struct Pair {
   double r = 0.0;    // |dx|, filled when a term uses_value
   double w = 0.0;    // W(r), filled when a term uses_value
   double dw_r = 0.0; // (dW/dr)/r, filled when a term uses_gradient: grad_i W_ij = dx * dw_r
-  double inv_r2e = 0.0;  // 1/(r^2 + eta^2), eta = 0.1 h (the usual regularisation), with the gradient
+  double inv_r2e = 0.0;  // 1/(r^2 + pair_eta2(h)), filled with the gradient
   Vec3 grad() const { return dx * dw_r; }
 };
+
+// eta^2 = (0.1 h)^2, the usual regularisation of the 1/r^2 in artificial
+// viscosity and density diffusion (Monaghan 1992): Pair::inv_r2e.
+inline double pair_eta2(double h) { return 0.01 * h * h; }
 
 // Below this many particles a loop runs on one thread: a parallel region
 // costs more than it saves there (and much more on a loaded machine, where a
@@ -58,6 +69,35 @@ template <class Sums, class... Terms>
 TALUS_PAIR_INLINE void apply_terms(const Pair& p, Sums& sums, const Terms&... terms) {
   (terms.pair(p, sums), ...);
 }
+
+// Particle i's sums over its neighbours; returns the number of pairs.
+template <class Grid, class Sums, class... Terms>
+TALUS_PAIR_INLINE std::uint64_t gather(Index i, const Vec3& xi, const Grid& cells, std::span<const Vec3> xb,
+                                       const KernelTable& kernel, double radius, double eta2, bool skip_self,
+                                       Sums& sums, const Terms&... terms) {
+  constexpr bool need_value = (Terms::uses_value || ...);
+  constexpr bool need_gradient = (Terms::uses_gradient || ...);
+  std::uint64_t count = 0;
+  // Inlined into the scan (with TALUS_PAIR_INLINE terms): the terms of a pass become straight-line code.
+  cells.for_each_neighbour(xi, xb, radius, [&](Index j, const Vec3& dx, double r2) __attribute__((always_inline)) {
+    if (skip_self && j == i) return;
+    Pair p;
+    p.j = j;
+    p.dx = dx;
+    p.r2 = r2;
+    if constexpr (need_value) {
+      p.r = std::sqrt(r2);
+      p.w = kernel.w(p.r);
+    }
+    if constexpr (need_gradient) {
+      p.dw_r = kernel.dw_over_r_from_r2(r2);
+      p.inv_r2e = 1.0 / (r2 + eta2);
+    }
+    ++count;
+    apply_terms(p, sums, terms...);
+  });
+  return count;
+}
 }  // namespace detail
 
 // Runs the fused pass over particles i in [0, n) of set A (positions xa)
@@ -68,39 +108,73 @@ TALUS_PAIR_INLINE void apply_terms(const Pair& p, Sums& sums, const Terms&... te
 template <class Grid, class Start, class Finish, class... Terms>
 std::uint64_t pair_pass(std::size_t n, std::span<const Vec3> xa, const Grid& cells, std::span<const Vec3> xb,
                         const KernelTable& kernel, Sets sets, Start&& start, Finish&& finish, const Terms&... terms) {
-  constexpr bool need_value = (Terms::uses_value || ...);
-  constexpr bool need_gradient = (Terms::uses_gradient || ...);
   const double radius = kernel.support_radius();
-  const double eta2 = 0.01 * kernel.h() * kernel.h();
+  const double eta2 = pair_eta2(kernel.h());
   const bool skip_self = sets == Sets::same;
   std::uint64_t pairs = 0;
 #pragma omp parallel for schedule(dynamic, 128) reduction(+ : pairs) if (n >= parallel_min)
   for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
     const Index i = static_cast<Index>(ii);
     auto sums = start(i);
-    std::uint64_t count = 0;
-    // Inlined into the scan (with TALUS_PAIR_INLINE terms): the terms of a pass become straight-line code.
-    cells.for_each_neighbour(xa[i], xb, radius, [&](Index j, const Vec3& dx, double r2) __attribute__((always_inline)) {
-      if (skip_self && j == i) return;
-      Pair p;
-      p.j = j;
-      p.dx = dx;
-      p.r2 = r2;
-      if constexpr (need_value) {
-        p.r = std::sqrt(r2);
-        p.w = kernel.w(p.r);
-      }
-      if constexpr (need_gradient) {
-        p.dw_r = kernel.dw_over_r_from_r2(r2);
-        p.inv_r2e = 1.0 / (r2 + eta2);
-      }
-      ++count;
-      detail::apply_terms(p, sums, terms...);
-    });
+    pairs += detail::gather(i, xa[i], cells, xb, kernel, radius, eta2, skip_self, sums, terms...);
     finish(i, sums);
-    pairs += count;
   }
   return pairs;
+}
+
+// A pair_pass that also reduces over particles: particles with skip(i) are
+// left out before any neighbour search, finish(i, sums, acc) adds particle i's
+// share to its thread's Acc (Acc{} is zero, `+=` adds), and the total is the
+// thread partials added in thread order (static schedule: the same split, so
+// the same sum, in every run at a given thread count). `pairs` gets the count.
+template <class Acc, class Grid, class Skip, class Start, class Finish, class... Terms>
+Acc reducing_pair_pass(std::size_t n, std::span<const Vec3> xa, const Grid& cells, std::span<const Vec3> xb,
+                       const KernelTable& kernel, Sets sets, std::uint64_t& pairs, Skip&& skip, Start&& start,
+                       Finish&& finish, const Terms&... terms) {
+  const double radius = kernel.support_radius();
+  const double eta2 = pair_eta2(kernel.h());
+  const bool skip_self = sets == Sets::same;
+  Acc total{};
+  std::uint64_t count = 0;
+#pragma omp parallel reduction(+ : count)
+  {
+    Acc partial{};
+#pragma omp for schedule(static)
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+      const Index i = static_cast<Index>(ii);
+      if (skip(i)) continue;
+      auto sums = start(i);
+      count += detail::gather(i, xa[i], cells, xb, kernel, radius, eta2, skip_self, sums, terms...);
+      finish(i, sums, partial);
+    }
+#pragma omp for ordered schedule(static, 1)
+    for (int t = 0; t < omp_get_num_threads(); ++t) {
+#pragma omp ordered
+      total += partial;
+    }
+  }
+  pairs = count;
+  return total;
+}
+
+// A term that wraps the terms of a pass on a body and also sums each pair's
+// moment dx x (change of s.acc) into s.moment, so that non-central (viscous)
+// pair forces give their exact torque: Sums carry `acc` and `moment`.
+template <class... Terms>
+struct WithPairMoment {
+  static constexpr bool uses_value = (Terms::uses_value || ...);
+  static constexpr bool uses_gradient = (Terms::uses_gradient || ...);
+  std::tuple<Terms...> terms;
+  template <class S>
+  TALUS_PAIR_INLINE void pair(const Pair& q, S& s) const {
+    const Vec3 before = s.acc;
+    std::apply([&](const Terms&... t) { detail::apply_terms(q, s, t...); }, terms);
+    s.moment += cross(q.dx, s.acc - before);
+  }
+};
+template <class... Terms>
+WithPairMoment<Terms...> with_pair_moment(const Terms&... terms) {
+  return {{terms...}};
 }
 
 }  // namespace talus::sph
