@@ -155,7 +155,7 @@ void DynamicParticles::setup(World& world, std::span<const int> bodies) {
 
 void DynamicParticles::bind(World& world, const sph::FluidSettings& settings) {
   settings_ = settings;
-  mirror_ = no_slip_ == NoSlip::extrapolated && settings.viscosity != sph::ViscosityModel::artificial;
+  mirror_ = no_slip_ == NoSlip::extrapolated && settings.viscous_velocity;
   noslip_v_.assign(mirror_ ? count_ : 0, Vec3{});
   WallFields w(world.boundary, first_, count_);
   // Per-material index lists for the EOS batch calls (indices in world.boundary).
@@ -180,6 +180,17 @@ void DynamicParticles::bind(World& world, const sph::FluidSettings& settings) {
   cells_.build(w.x);
   initial_density(world);
   update_pressure(world);
+  inv_rho_.assign(count_, 0.0);
+  refresh_set(world);
+}
+
+void DynamicParticles::refresh_set(World& world) {
+  WallFields w(world.boundary, first_, count_);
+  set_.cells = &cells_;
+  set_.position = w.x;
+  set_.fields = w.neighbours();
+  set_.fields.inv_density = inv_rho_.data();
+  set_.viscous_velocity = mirror_ ? noslip_v_.data() : w.v.data();
 }
 
 // Wall pressure extrapolated from the fluid around each wall particle
@@ -223,85 +234,36 @@ void DynamicParticles::begin_step(World& world) {
   std::ranges::copy(w.rho, w.rho_n.begin());
 }
 
-void DynamicParticles::interact(World& world, const sph::FluidView& fluid, const sph::FluidRates& rates) {
+std::uint64_t DynamicParticles::fill_wall_state(World& world, const sph::FluidView& fluid) {
   WallFields w(world.boundary, first_, count_);
-  if (moves_) cells_.build(w.x);
-  const KernelTable& kernel = *settings_.kernel;
+  if (moves_) cells_.build(w.x);  // also right after a restart, which loads the positions
   // 1/rho from the current density (also right after a restart, which loads the density only).
   inv_rho_.resize(count_);
   for (std::size_t b = 0; b < count_; ++b) inv_rho_[b] = 1.0 / w.rho[b];
-  sph::Neighbours wall_nb = w.neighbours();
-  wall_nb.inv_density = inv_rho_.data();
-  const double* mu = settings_.material_mu.data();
-  const bool continuity = !settings_.summation_density;
 
-  // Wall side first: continuity of each wall particle with its fluid neighbours
-  // and, for the extrapolated no-slip, the mirrored velocity v_b* = 2 v_b - v~_b.
-  auto wstart = [&](Index b) { return WallSums{w.v[b], w.rho[b], 0.0, 0.0, Vec3{}}; };
-  auto wfinish = [&](Index b, const WallSums& s) { w.drho[b] = s.drho; };
-  auto wfinish_mirror = [&](Index b, const WallSums& s) {
+  // Continuity of each wall particle with its fluid neighbours and, for the
+  // extrapolated no-slip, the mirrored velocity v_b* = 2 v_b - v~_b.
+  auto start = [&](Index b) { return WallSums{w.v[b], w.rho[b], 0.0, 0.0, Vec3{}}; };
+  auto finish = [&](Index b, const WallSums& s) { w.drho[b] = s.drho; };
+  auto finish_mirror = [&](Index b, const WallSums& s) {
     w.drho[b] = s.drho;
     // No fluid in reach: nothing to mirror, the wall's own velocity.
     noslip_v_[b] = s.wsum > 0.0 ? w.v[b] * 2.0 - s.vsum * (1.0 / s.wsum) : w.v[b];
   };
   const std::span<const Vec3> wx = w.x;
-  const sph::Continuity wall_cont{fluid.neighbours()};
+  const KernelTable& kernel = *settings_.kernel;
+  const sph::Continuity continuity{fluid.neighbours()};
   std::uint64_t pairs = 0;
   if (mirror_) {
     if (noslip_v_.size() != count_) noslip_v_.resize(count_);
-    pairs += sph::pair_pass(count_, wx, *fluid.cells, fluid.position, kernel, sph::other_set, wstart, wfinish_mirror,
-                            wall_cont, VelocityShepard{fluid.velocity.data()});
+    pairs = sph::pair_pass(count_, wx, *fluid.cells, fluid.position, kernel, sph::other_set, start, finish_mirror,
+                           continuity, VelocityShepard{fluid.velocity.data()});
   } else {
-    pairs += sph::pair_pass(count_, wx, *fluid.cells, fluid.position, kernel, sph::other_set, wstart, wfinish,
-                            wall_cont);
+    pairs = sph::pair_pass(count_, wx, *fluid.cells, fluid.position, kernel, sph::other_set, start, finish,
+                           continuity);
   }
-
-  // Fluid side: forces and density rates of the walls on fluid particle i.
-  // The viscous term sees the mirrored wall velocity, pressure and continuity the wall's own.
-  sph::Neighbours visc_nb = wall_nb;
-  if (mirror_) visc_nb.velocity = noslip_v_.data();
-  auto start = [&](Index i) {
-    sph::FluidSums s;
-    s.v = fluid.velocity[i];
-    s.rho = fluid.density[i];
-    s.inv_rho = 1.0 / s.rho;
-    s.p = fluid.pressure[i];
-    s.c = fluid.sound_speed[i];
-    s.mu = fluid.viscosity.empty() ? mu[fluid.material[i]] : fluid.viscosity[i];  // mu_eff when non-Newtonian
-    return s;
-  };
-  auto finish = [&](Index i, const sph::FluidSums& s) {
-    rates.acceleration[i] += s.acc;
-    if (continuity) rates.density_rate[i] += s.drho;
-    rates.visc_rate[i] = std::max(rates.visc_rate[i], s.visc);
-  };
-  const std::size_t nf = fluid.position.size();
-  const sph::PressureForce pressure{wall_nb};
-  const sph::Continuity cont{wall_nb};
-  switch (settings_.viscosity) {
-    case sph::ViscosityModel::artificial:
-      pairs += sph::pair_pass(nf, fluid.position, cells_, wx, kernel, sph::other_set, start, finish, pressure,
-                              sph::ArtificialViscosity{wall_nb, settings_.alpha * kernel.h()}, cont);
-      break;
-    case sph::ViscosityModel::laminar:
-      pairs += sph::pair_pass(nf, fluid.position, cells_, wx, kernel, sph::other_set, start, finish, pressure,
-                              sph::LaminarViscosity<true>{visc_nb, mu, sph::laminar_eta2(kernel.h())}, cont);
-      break;
-    case sph::ViscosityModel::laplacian:
-      pairs += sph::pair_pass(nf, fluid.position, cells_, wx, kernel, sph::other_set, start, finish, pressure,
-                              sph::LaplacianViscosity{visc_nb, &kernel}, cont);
-      break;
-  }
-  pairs_ = pairs;
-}
-
-void DynamicParticles::add_density(const World& world, const sph::FluidView& fluid, std::span<double> rho) {
-  ParticleStore& s = const_cast<ParticleStore&>(world.boundary);
-  WallFields w(s, first_, count_);
-  auto start = [](Index) { return sph::DensitySums{}; };
-  auto finish = [&](Index i, const sph::DensitySums& sum) { rho[i] += sum.rho_sum; };
-  sph::pair_pass(fluid.position.size(), fluid.position, cells_, std::span<const Vec3>(w.x), *settings_.kernel,
-                 sph::other_set, start, finish, sph::DensitySum{w.m.data()});
+  refresh_set(world);
+  return pairs;
 }
 
 void DynamicParticles::advance_walls(World& world, double time, double dt) {
@@ -320,6 +282,7 @@ void DynamicParticles::advance_walls(World& world, double time, double dt) {
       w.x[b] = wrap_periodic(world, motion.position(w.x0[b], time));
       w.v[b] = motion.velocity(w.x0[b], time);
     }
+    cells_.build(w.x);  // the wall set is current for the next pass (summation density runs before fill_wall_state)
   }
   update_pressure(world);
 }
@@ -328,7 +291,7 @@ void DynamicParticles::describe_passes(StagePlan& plan) const {
   std::string names;
   for (const auto& n : body_names_) names += (names.empty() ? "'" : ", '") + n + "'";
   plan.passes.push_back("fluid-wall pass (dynamic_particles " + names +
-                        "): wall pressure + viscosity + continuity on the fluid");
+                        "): the stage's pressure + viscosity + continuity against the wall set");
   plan.passes.push_back("wall-fluid pass (dynamic_particles " + names + "): wall continuity" +
                         (mirror_ ? ", extrapolated no-slip velocity 2 v_wall - Shepard(v_fluid)" : "") +
                         ", wall EOS" + (moves_ ? ", prescribed motion" : ""));

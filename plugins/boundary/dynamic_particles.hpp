@@ -6,7 +6,8 @@
 // never below the reference density (as DualSPHysics, so that walls never pull
 // fluid in), a pressure from the EOS of the wall's reference material, and push
 // on the fluid with the same symmetric pressure and viscous terms as fluid
-// neighbours. Wall particles follow the body's prescribed "motion" if any.
+// neighbours (the stage's fluid-wall pass over this model's wall set). Wall
+// particles follow the body's prescribed "motion" if any.
 // Initial wall density: the hydrostatic extrapolation of the neighbouring fluid
 // pressure (Adami et al. 2012, J. Comput. Phys. 231, eq. 27) so that a column
 // started hydrostatic is held from the first step.
@@ -45,10 +46,11 @@ class DynamicParticles final : public sph::SphBoundary {
   void setup(World& world, std::span<const int> bodies) override;
   void bind(World& world, const sph::FluidSettings& settings) override;
   void begin_step(World& world) override;
-  void interact(World& world, const sph::FluidView& fluid, const sph::FluidRates& rates) override;
-  void add_density(const World& world, const sph::FluidView& fluid, std::span<double> rho) override;
+  std::uint64_t fill_wall_state(World& world, const sph::FluidView& fluid) override;
+  std::span<const sph::WallSet> wall_sets() const override {
+    return count_ > 0 ? std::span<const sph::WallSet>(&set_, 1) : std::span<const sph::WallSet>();
+  }
   void advance_walls(World& world, double time, double dt) override;
-  std::uint64_t pair_count() const override { return pairs_; }
   void describe_passes(StagePlan& plan) const override;
 
   std::size_t first() const { return first_; }
@@ -57,6 +59,7 @@ class DynamicParticles final : public sph::SphBoundary {
  private:
   void update_pressure(World& world);
   void initial_density(World& world);
+  void refresh_set(World& world);  // set_ at the store's current arrays
 
   std::vector<int> bodies_;
   std::vector<std::string> body_names_;
@@ -68,11 +71,11 @@ class DynamicParticles final : public sph::SphBoundary {
   bool moves_ = false;
   sph::FluidSettings settings_;
   sph::NeighbourGrid cells_;
-  std::vector<double> inv_rho_;  // scratch: 1/rho of my wall particles, refreshed by every interact()
+  std::vector<double> inv_rho_;  // 1/rho of my wall particles, refreshed by every fill_wall_state()
   NoSlip no_slip_ = NoSlip::extrapolated;
   bool mirror_ = false;           // no_slip extrapolated and a viscous term that uses it (laminar, Laplacian)
-  std::vector<Vec3> noslip_v_;    // scratch: v_b* of my wall particles, refilled by every interact()
-  std::uint64_t pairs_ = 0;
+  std::vector<Vec3> noslip_v_;    // v_b* of my wall particles, refilled by every fill_wall_state()
+  sph::WallSet set_;              // all my wall particles, one set
 };
 
 }  // namespace talus::boundary

@@ -70,7 +70,7 @@ void Repulsion::bind(World& world, const sph::FluidSettings&) {
   for (double m : world.fluid.scalar("mass")) min_mass_ = std::min(min_mass_, m);
 }
 
-void Repulsion::interact(World&, const sph::FluidView& fluid, const sph::FluidRates& rates) {
+std::uint64_t Repulsion::add_direct_forces(World&, const sph::FluidView& fluid, const sph::FluidRates& rates) {
   const std::size_t n = fluid.position.size();
   const sph::PenaltySpring spring = spring_;
   const Plane* planes = planes_.data();
@@ -100,6 +100,7 @@ void Repulsion::interact(World&, const sph::FluidView& fluid, const sph::FluidRa
     }
     rates.acceleration[i] += force / fluid.mass[i];
   }
+  return 0;
 }
 
 double Repulsion::stable_time_step(const World&) const { return spring_.stable_time_step(min_mass_); }

@@ -23,8 +23,7 @@ class Repulsion final : public sph::SphBoundary {
   void setup(World& world, std::span<const int> bodies) override;
   void bind(World& world, const sph::FluidSettings& settings) override;
   void begin_step(World&) override {}
-  void interact(World& world, const sph::FluidView& fluid, const sph::FluidRates& rates) override;
-  void add_density(const World&, const sph::FluidView&, std::span<double>) override {}
+  std::uint64_t add_direct_forces(World& world, const sph::FluidView& fluid, const sph::FluidRates& rates) override;
   void advance_walls(World&, double, double) override {}
   double stable_time_step(const World& world) const override;
   void describe_passes(StagePlan& plan) const override;

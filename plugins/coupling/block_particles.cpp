@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 
-#include "block_pass.hpp"
 #include "fluid_fit.hpp"
 #include "talus/blocks.hpp"
 #include "talus/dda/polyhedron.hpp"
@@ -177,12 +176,12 @@ void BlockParticles::bind(World& world, const sph::FluidSettings& settings) {
     begin_.push_back(first);
     end_.push_back(first + points.size());
   }
-  period_ = periods(world);
   cells_.assign(blocks_.size(), sph::NeighbourGrid{});
   for (auto& c : cells_) c.configure(world.dim, settings.lo, settings.hi, radius, world.periodic);
   inv_rho_.assign(s.size(), 0.0);  // indexed like world.boundary (only my range is used)
   ledger_.reset(blocks_.size());
   place(world);
+  refresh_sets(world);
   initial_density(world);
   update_pressure(world);
 }
@@ -244,10 +243,9 @@ void BlockParticles::begin_step(World& world) {
   ledger_.begin_step();
 }
 
-void BlockParticles::interact(World& world, const sph::FluidView& fluid, const sph::FluidRates& rates) {
+void BlockParticles::refresh_sets(World& world) {
   ParticleStore& s = world.boundary;
   const BlockSet& b = *world.blocks;
-  const KernelTable& kernel = *settings_.kernel;
   const std::span<const Vec3> x = s.position();
   const auto v = s.vector("velocity");
   const auto rho = s.scalar("density");
@@ -255,70 +253,51 @@ void BlockParticles::interact(World& world, const sph::FluidView& fluid, const s
   const auto c = s.scalar("sound_speed");
   const auto m = s.scalar("mass");
   const auto mat = s.material();
+  sets_.resize(blocks_.size());
+  for (std::size_t k = 0; k < blocks_.size(); ++k) {
+    const std::size_t first = begin_[k], count = end_[k] - begin_[k];
+    cells_[k].build(x.subspan(first, count));
+    sph::WallSet& set = sets_[k];
+    set.cells = &cells_[k];
+    set.position = x.subspan(first, count);
+    // Offset views: neighbour index j of this block's grid reads particle first + j.
+    set.fields = {v.data() + first, rho.data() + first, p.data() + first,
+                  c.data() + first, m.data() + first, mat.data() + first};
+    set.fields.inv_density = inv_rho_.data() + first;
+    set.viscous_velocity = set.fields.velocity;
+    set.rigid_body = true;
+    const std::size_t blk = blocks_[k];
+    set.body = {b.position[blk], b.bounds_lo[blk], b.bounds_hi[blk]};
+  }
+}
+
+std::uint64_t BlockParticles::fill_wall_state(World& world, const sph::FluidView& fluid) {
+  ParticleStore& s = world.boundary;
+  const KernelTable& kernel = *settings_.kernel;
+  refresh_sets(world);  // also right after a restart, which loads the positions
+  const auto v = s.vector("velocity");
+  const auto rho = s.scalar("density");
   auto drho = s.scalar("density_rate");
-  const double* mu = settings_.material_mu.data();
-  const bool continuity = !settings_.summation_density;
-  // The block-side pass uses continuity only (velocity and volume of the fluid).
-  const sph::Neighbours fluid_nb = fluid.neighbours();
+  const sph::Continuity continuity{fluid.neighbours()};  // of the block particles: the fluid's velocity and volume
+  struct WallSums {
+    Vec3 v;
+    double rho = 0.0;
+    double drho = 0.0;
+  };
   std::uint64_t pairs = 0;
   for (std::size_t k = 0; k < blocks_.size(); ++k) {
     const std::size_t first = begin_[k], count = end_[k] - begin_[k];
-    const std::span<const Vec3> xb = x.subspan(first, count);
-    cells_[k].build(xb);
-    // Offset views so that neighbour index j of this block's cell list reads particle first + j.
     for (std::size_t q = 0; q < count; ++q) inv_rho_[first + q] = 1.0 / rho[first + q];
-    sph::Neighbours nb{v.data() + first, rho.data() + first, p.data() + first,
-                       c.data() + first, m.data() + first, mat.data() + first};
-    nb.inv_density = inv_rho_.data() + first;
-    const BlockPassInput in{fluid, rates, cells_[k], xb, kernel, b.bounds_lo[blocks_[k]], b.bounds_hi[blocks_[k]],
-                            b.position[blocks_[k]], period_, mu, continuity};
-    const sph::PressureForce pressure{nb};
-    const sph::Continuity cont{nb};
-    BlockReaction reaction;
-    std::uint64_t fluid_pairs = 0;
-    switch (settings_.viscosity) {
-      case sph::ViscosityModel::artificial:
-        reaction = block_pass(in, fluid_pairs, pressure, sph::ArtificialViscosity{nb, settings_.alpha * kernel.h()},
-                              cont);
-        break;
-      case sph::ViscosityModel::laminar:
-        reaction = block_pass(in, fluid_pairs, pressure,
-                              sph::LaminarViscosity<true>{nb, mu, sph::laminar_eta2(kernel.h())}, cont);
-        break;
-      case sph::ViscosityModel::laplacian:
-        reaction = block_pass(in, fluid_pairs, pressure, sph::LaplacianViscosity{nb, &kernel}, cont);
-        break;
-    }
-    pairs += fluid_pairs;
-    ledger_.set(k, reaction.force, reaction.torque);
-
-    // Block side: continuity of each block particle with its fluid neighbours.
-    struct WallSums {
-      Vec3 v;
-      double rho = 0.0;
-      double drho = 0.0;
-    };
-    auto wstart = [&](Index q) { return WallSums{v[first + q], rho[first + q], 0.0}; };
-    auto wfinish = [&](Index q, const WallSums& sum) { drho[first + q] = sum.drho; };
-    pairs += sph::pair_pass(count, xb, *fluid.cells, fluid.position, kernel, sph::other_set, wstart, wfinish,
-                            sph::Continuity{fluid_nb});
+    auto start = [&](Index q) { return WallSums{v[first + q], rho[first + q], 0.0}; };
+    auto finish = [&](Index q, const WallSums& sum) { drho[first + q] = sum.drho; };
+    pairs += sph::pair_pass(count, sets_[k].position, *fluid.cells, fluid.position, kernel, sph::other_set, start,
+                            finish, continuity);
   }
-  pairs_ = pairs;
+  return pairs;
 }
 
-void BlockParticles::add_density(const World& world, const sph::FluidView& fluid, std::span<double> rho) {
-  const ParticleStore& s = world.boundary;
-  const std::span<const Vec3> x = s.position();
-  const auto m = s.scalar("mass");
-  for (std::size_t k = 0; k < blocks_.size(); ++k) {
-    const std::size_t first = begin_[k], count = end_[k] - begin_[k];
-    sph::NeighbourGrid& cells = cells_[k];
-    cells.build(x.subspan(first, count));
-    auto start = [](Index) { return sph::DensitySums{}; };
-    auto finish = [&](Index i, const sph::DensitySums& sum) { rho[i] += sum.rho_sum; };
-    sph::pair_pass(fluid.position.size(), fluid.position, cells, x.subspan(first, count), *settings_.kernel,
-                   sph::other_set, start, finish, sph::DensitySum{m.data() + first});
-  }
+void BlockParticles::take_reaction(World&, std::size_t set, const Vec3& force, const Vec3& torque) {
+  ledger_.set(set, force, torque);
 }
 
 void BlockParticles::advance_walls(World& world, double time, double dt) {
@@ -336,6 +315,7 @@ void BlockParticles::advance_walls(World& world, double time, double dt) {
   }
   // The dda stage has already moved the blocks to the end of this host step.
   place(world);
+  refresh_sets(world);
   update_pressure(world);
   ledger_.commit(world, blocks_, time, dt);
 }
@@ -346,7 +326,8 @@ void BlockParticles::describe_passes(StagePlan& plan) const {
   std::size_t count = 0;
   for (std::size_t k = 0; k < begin_.size(); ++k) count += end_[k] - begin_[k];
   plan.passes.push_back("fluid-block pass (block_particles " + names +
-                        "): block pressure + viscosity + continuity on the fluid; force and torque on the block");
+                        "): the stage's pressure + viscosity + continuity against each block's wall set; force and "
+                        "torque on the block");
   plan.passes.push_back("block-fluid pass (block_particles " + names + "): block-particle continuity, EOS, rigid "
                         "placement");
   if (count) {

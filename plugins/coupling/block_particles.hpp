@@ -11,10 +11,12 @@
 // velocity v_b = V + w x (x_b - X). They act on the fluid like DBC walls:
 // density from continuity, drho_b/dt = sum_f m_f (v_b - v_f) . grad W_bf
 // (never below rho0), pressure from the fluid's EOS, and the same symmetric
-// pressure and viscous terms as fluid neighbours. The fluid's force on the
-// block is minus the sum of the forces its particles exert on the fluid:
+// pressure and viscous terms as fluid neighbours: each block is a rigid-body
+// wall set of the stage's fluid-wall pass, which sums the fluid's force on the
+// block as minus the sum of the forces its particles exert on the fluid:
 //   F = -sum_f m_f a_f(block),  T = sum (x_b - X) x (-m_f a_fb),
-// summed once per step into external_force/torque (block_link.hpp).
+// handed back by take_reaction, once per step into external_force/torque
+// (block_link.hpp).
 #pragma once
 
 #include <vector>
@@ -33,10 +35,10 @@ class BlockParticles final : public sph::SphBoundary {
   void setup(World& world, std::span<const int> bodies) override;
   void bind(World& world, const sph::FluidSettings& settings) override;
   void begin_step(World& world) override;
-  void interact(World& world, const sph::FluidView& fluid, const sph::FluidRates& rates) override;
-  void add_density(const World& world, const sph::FluidView& fluid, std::span<double> rho) override;
+  std::uint64_t fill_wall_state(World& world, const sph::FluidView& fluid) override;
+  std::span<const sph::WallSet> wall_sets() const override { return sets_; }
+  void take_reaction(World& world, std::size_t set, const Vec3& force, const Vec3& torque) override;
   void advance_walls(World& world, double time, double dt) override;
-  std::uint64_t pair_count() const override { return pairs_; }
   void describe_passes(StagePlan& plan) const override;
 
   // For tests: per block of this model, in the order of the bodies.
@@ -49,6 +51,7 @@ class BlockParticles final : public sph::SphBoundary {
 
  private:
   void place(World& world);
+  void refresh_sets(World& world);  // grids and wall sets at the current block particles
   void initial_density(World& world);
   void update_pressure(World& world);
 
@@ -69,11 +72,10 @@ class BlockParticles final : public sph::SphBoundary {
   std::size_t removed_ = 0;
   std::size_t fitted_ = 0;  // fluid particles moved onto the faces at the start (fluid_fit.hpp)
   sph::FluidSettings settings_;
-  Vec3 period_{};  // domain length on periodic axes (minimum-image lever arms, block_pass.hpp)
-  std::vector<sph::NeighbourGrid> cells_;           // per block
-  std::vector<double> inv_rho_;           // 1/rho of my particles, refreshed per interact (scratch)
+  std::vector<sph::NeighbourGrid> cells_;  // per block
+  std::vector<sph::WallSet> sets_;         // per block
+  std::vector<double> inv_rho_;            // 1/rho of my particles, refreshed by every fill_wall_state()
   ImpulseLedger ledger_;
-  std::uint64_t pairs_ = 0;
 };
 
 }  // namespace talus::coupling

@@ -6,10 +6,10 @@
 
 #include <omp.h>
 
-#include "block_pass.hpp"
 #include "talus/blocks.hpp"
 #include "talus/eos.hpp"
 #include "talus/error.hpp"
+#include "talus/periodic.hpp"
 #include "talus/world.hpp"
 
 namespace talus::coupling {
@@ -65,7 +65,7 @@ void Repulsion::bind(World& world, const sph::FluidSettings&) {
 
 double Repulsion::stable_time_step(const World&) const { return spring_.stable_time_step(min_mass_); }
 
-void Repulsion::interact(World& world, const sph::FluidView& fluid, const sph::FluidRates& rates) {
+std::uint64_t Repulsion::add_direct_forces(World& world, const sph::FluidView& fluid, const sph::FluidRates& rates) {
   const BlockSet& b = *world.blocks;
   const std::int64_t n = static_cast<std::int64_t>(fluid.position.size());
   const double r0 = r0_;
@@ -125,7 +125,7 @@ void Repulsion::interact(World& world, const sph::FluidView& fluid, const sph::F
     }
     ledger_.set(k, force, torque);
   }
-  pairs_ = pairs;
+  return pairs;
 }
 
 void Repulsion::describe_passes(StagePlan& plan) const {

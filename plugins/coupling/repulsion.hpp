@@ -25,11 +25,9 @@ class Repulsion final : public sph::SphBoundary {
   void setup(World& world, std::span<const int> bodies) override;
   void bind(World& world, const sph::FluidSettings& settings) override;
   void begin_step(World&) override { ledger_.begin_step(); }
-  void interact(World& world, const sph::FluidView& fluid, const sph::FluidRates& rates) override;
-  void add_density(const World&, const sph::FluidView&, std::span<double>) override {}
+  std::uint64_t add_direct_forces(World& world, const sph::FluidView& fluid, const sph::FluidRates& rates) override;
   void advance_walls(World& world, double time, double dt) override { ledger_.commit(world, blocks_, time, dt); }
   double stable_time_step(const World& world) const override;
-  std::uint64_t pair_count() const override { return pairs_; }
   void describe_passes(StagePlan& plan) const override;
 
   std::size_t blocks() const { return blocks_.size(); }
@@ -52,7 +50,6 @@ class Repulsion final : public sph::SphBoundary {
   Vec3 period_{};  // domain length on periodic axes: fluid is taken at its image nearest the block
   std::vector<Vec3> thread_force_, thread_torque_;
   ImpulseLedger ledger_;
-  std::uint64_t pairs_ = 0;
 };
 
 }  // namespace talus::coupling

@@ -1,14 +1,17 @@
 // The fluid-fluid passes of the wcsph stage: the fused force/continuity pass
-// (one neighbour traversal) and the summation-density pass. The scene's
-// choices are resolved here, once per evaluation, into one template
-// instantiation; nothing in the pair loop branches on them.
+// (one neighbour traversal) and the summation-density pass, and the order of
+// all passes of one rate evaluation. The scene's choices are resolved here,
+// once per evaluation, into one template instantiation; nothing in the pair
+// loop branches on them.
 #include <cmath>
 
 #include "fluid_fields.hpp"
+#include "fluid_sums.hpp"
 #include "talus/eos.hpp"
 #include "talus/sph/fluid_terms.hpp"
 #include "talus/sph/pair_loop.hpp"
 #include "talus/world.hpp"
+#include "viscosity_term.hpp"
 #include "wcsph_stage.hpp"
 
 namespace talus::wcsph {
@@ -30,7 +33,7 @@ std::uint64_t run_force_pass(const PassContext& ctx, const Terms&... terms) {
   const double* mu = ctx.mu;
   const Vec3 g = ctx.gravity;
   auto start = [&](Index i) {
-    sph::FluidSums s;
+    FluidSums s;
     s.v = f.v[i];
     s.rho = f.rho[i];
     s.inv_rho = ctx.nb.inv_density[i];
@@ -41,7 +44,7 @@ std::uint64_t run_force_pass(const PassContext& ctx, const Terms&... terms) {
     s.mat = f.mat[i];
     return s;
   };
-  auto finish = [&](Index i, const sph::FluidSums& s) {
+  auto finish = [&](Index i, const FluidSums& s) {
     f.a[i] = s.acc + g;
     f.drho[i] = s.drho;
     f.visc[i] = s.visc;
@@ -86,31 +89,14 @@ std::uint64_t WcsphStage::fluid_pass(World& world) {
   sph::Neighbours nb = f.neighbours();
   nb.inv_density = inv_rho_.data();
   nb.rho_over_c2 = rho_over_c2_.data();
-  const PassContext ctx{world, f, cells_, material_mu_.data(), world.gravity, nb};
+  // The three-pass viscosity's force pass reads mu_eff of both particles; start() then takes mu_eff[i].
+  if (per_particle_viscosity_) nb.viscosity = world.fluid.scalar("mu_eff").data();
+  const PassContext ctx{world, f, cells_, per_particle_viscosity_ ? nullptr : material_mu_.data(), world.gravity, nb};
   const sph::PressureForce pressure{nb};
   const double delta_h_c0 = delta_ * h_ * c0_max_;
-  if (per_particle_viscosity_) {
-    // Pass 3: the laminar force with mu_eff of both particles; start() reads mu_eff[i].
-    nb.viscosity = world.fluid.scalar("mu_eff").data();
-    const PassContext pctx{world, f, cells_, nullptr, world.gravity, nb};
-    if (viscosity_mean_ == sph::ViscosityMean::harmonic)
-      return with_density_terms(pctx, density_, diffusion_, delta_h_c0, pressure,
-                                sph::LaminarViscosityField<sph::ViscosityMean::harmonic>{nb, sph::laminar_eta2(h_)});
-    return with_density_terms(pctx, density_, diffusion_, delta_h_c0, pressure,
-                              sph::LaminarViscosityField<sph::ViscosityMean::arithmetic>{nb, sph::laminar_eta2(h_)});
-  }
-  switch (viscosity_) {
-    case sph::ViscosityModel::artificial:
-      return with_density_terms(ctx, density_, diffusion_, delta_h_c0, pressure,
-                                sph::ArtificialViscosity{nb, alpha_ * h_});
-    case sph::ViscosityModel::laminar:
-      return with_density_terms(ctx, density_, diffusion_, delta_h_c0, pressure,
-                                sph::LaminarViscosity<false>{nb, material_mu_.data(), sph::laminar_eta2(h_)});
-    case sph::ViscosityModel::laplacian:
-      return with_density_terms(ctx, density_, diffusion_, delta_h_c0, pressure,
-                                sph::LaplacianViscosity{nb, &world.kernel});
-  }
-  return 0;
+  return with_viscosity_term<Neighbour::fluid>(viscosity_settings(world), nb, nb, [&](const auto& viscous) {
+    return with_density_terms(ctx, density_, diffusion_, delta_h_c0, pressure, viscous);
+  });
 }
 
 void WcsphStage::density_summation(World& world) {
@@ -125,8 +111,7 @@ void WcsphStage::density_summation(World& world) {
   const std::span<const Vec3> x = f.x;
   pairs_total_ += sph::pair_pass(x.size(), x, cells_, x, world.kernel, sph::same_set, start, finish,
                                  sph::DensitySum{m.data()});
-  const sph::FluidView view{&cells_, f.x, f.v, f.rho, f.p, f.c, f.m, f.mat};
-  for (sph::SphBoundary* wall : walls_) wall->add_density(world, view, f.rho);
+  pairs_total_ += wall_density_passes(world);
 }
 
 void WcsphStage::update_pressure(World& world) {
@@ -148,14 +133,7 @@ void WcsphStage::compute_rates(World& world) {
     apparent_viscosity_pass(world);
   }
   pairs_total_ += fluid_pass(world);
-  sph::FluidView view{&cells_, f.x, f.v, f.rho, f.p, f.c, f.m, f.mat};
-  view.inv_density = inv_rho_;
-  if (per_particle_viscosity_) view.viscosity = world.fluid.scalar("mu_eff");
-  const sph::FluidRates rates{f.a, f.drho, f.visc};
-  for (sph::SphBoundary* wall : walls_) {
-    wall->interact(world, view, rates);
-    pairs_total_ += wall->pair_count();
-  }
+  pairs_total_ += wall_passes(world);
   if (point_implicit_) scale_stiff_particles(world);
   ++rate_evaluations_;
   rates_valid_ = true;

@@ -12,6 +12,7 @@
 #include "fluid_fields.hpp"
 #include "talus/eos.hpp"
 #include "talus/error.hpp"
+#include "talus/periodic.hpp"
 #include "talus/rheology.hpp"
 #include "talus/world.hpp"
 
@@ -74,10 +75,10 @@ WcsphStage::WcsphStage(const ParamValues& v)
                                     {"euler", Integrator::euler}})),
       verlet_steps_(static_cast<int>(v.integer("verlet_steps"))),
       courant_(v.real("courant")),
-      viscosity_(pick<sph::ViscosityModel>(v, "viscosity",
-                                           {{"artificial", sph::ViscosityModel::artificial},
-                                            {"laminar", sph::ViscosityModel::laminar},
-                                            {"laplacian", sph::ViscosityModel::laplacian}})),
+      viscosity_(pick<ViscosityModel>(v, "viscosity",
+                                           {{"artificial", ViscosityModel::artificial},
+                                            {"laminar", ViscosityModel::laminar},
+                                            {"laplacian", ViscosityModel::laplacian}})),
       alpha_(v.real("alpha")),
       density_(pick<DensityMode>(v, "density",
                                  {{"continuity", DensityMode::continuity}, {"summation", DensityMode::summation}})),
@@ -97,7 +98,7 @@ WcsphStage::WcsphStage(const ParamValues& v)
 void WcsphStage::setup(World& world) {
   h_ = world.kernel.h();
   if (!(h_ > 0.0)) params_.fail("", "the wcsph stage needs a smoothing kernel: add \"kernel\": {\"type\": ...} to the scene");
-  if (viscosity_ == sph::ViscosityModel::laplacian && !world.kernel.has_laplacian())
+  if (viscosity_ == ViscosityModel::laplacian && !world.kernel.has_laplacian())
     params_.fail("viscosity", "'laplacian' needs a kernel with a Laplacian; allowed with kernel 'muller'");
 
   ParticleStore& s = world.fluid;
@@ -134,11 +135,11 @@ void WcsphStage::setup(World& world) {
     if (!mat.eos)
       mat.params.fail("eos", "material '" + mat.name + "' is used by fluid particles but has no equation of state");
     const bool newtonian = mat.rheology && mat.rheology->is_newtonian();
-    if (viscosity_ == sph::ViscosityModel::laplacian && !newtonian)
+    if (viscosity_ == ViscosityModel::laplacian && !newtonian)
       mat.params.fail("rheology", "viscosity 'laplacian' of stage wcsph needs a Newtonian rheology for material '" +
                                       mat.name + "'; allowed: {\"type\": \"newtonian\", \"viscosity\": ...}, or "
                                       "viscosity 'laminar' for non-Newtonian rheologies");
-    if (viscosity_ == sph::ViscosityModel::laminar && !newtonian) {
+    if (viscosity_ == ViscosityModel::laminar && !newtonian) {
       if (!mat.rheology || !mat.rheology->has_apparent_viscosity())
         mat.params.fail("rheology", "viscosity 'laminar' of stage wcsph needs a rheology with an apparent viscosity "
                                     "for material '" + mat.name + "'; allowed: newtonian, bingham, hbp, power_law, "
@@ -147,14 +148,14 @@ void WcsphStage::setup(World& world) {
     }
     fluid_materials_.push_back(static_cast<int>(m));
     c0_max_ = std::max(c0_max_, mat.eos->reference_sound_speed());
-    if (viscosity_ != sph::ViscosityModel::artificial && mat.density > 0.0)
+    if (viscosity_ != ViscosityModel::artificial && mat.density > 0.0)
       nu_max_ = std::max(nu_max_, material_mu_[m] / mat.density);
   }
 
   // Three-pass viscosity only where something makes mu_eff vary per particle.
-  if (smagorinsky_ && viscosity_ != sph::ViscosityModel::laminar)
+  if (smagorinsky_ && viscosity_ != ViscosityModel::laminar)
     params_.fail("turbulence", "'smagorinsky' adds to the laminar viscosity; needs \"viscosity\": \"laminar\"");
-  per_particle_viscosity_ = viscosity_ == sph::ViscosityModel::laminar && (smagorinsky_ || !rheology_materials_.empty());
+  per_particle_viscosity_ = viscosity_ == ViscosityModel::laminar && (smagorinsky_ || !rheology_materials_.empty());
   if (per_particle_viscosity_) {
     s.require(field_shear_rate);
     s.require(field_mu_eff);
@@ -190,8 +191,9 @@ void WcsphStage::setup(World& world) {
     }
   cells_.configure(world.dim, lo, hi, radius, world.periodic);
 
-  settings_ = sph::FluidSettings{&world.kernel, viscosity_, alpha_, material_mu_,
-                                 density_ == DensityMode::summation, lo, hi, per_particle_viscosity_};
+  settings_ = sph::FluidSettings{&world.kernel, density_ == DensityMode::summation, lo, hi,
+                                 viscosity_ != ViscosityModel::artificial};
+  period_ = periods(world);
   world.refresh_material_index();
   update_pressure(world);
   cells_.build(world.fluid.position());
@@ -205,6 +207,11 @@ void WcsphStage::setup(World& world) {
   rates_valid_ = false;
   worst_deviation_ = max_density_deviation(world);
   worst_deviation_time_ = world.time;
+}
+
+ViscositySettings WcsphStage::viscosity_settings(const World& world) const {
+  return {viscosity_,           alpha_ * h_,     material_mu_.data(), sph::laminar_eta2(h_),
+          per_particle_viscosity_, viscosity_mean_, &world.kernel};
 }
 
 bool WcsphStage::rates_current(const World& world) const {
@@ -312,8 +319,8 @@ StagePlan WcsphStage::plan(const World& world) const {
                          ? (viscosity_mean_ == sph::ViscosityMean::harmonic
                                 ? "laminar viscosity (Morris, mu_eff, harmonic mean)"
                                 : "laminar viscosity (Morris, mu_eff, arithmetic mean)")
-                     : viscosity_ == sph::ViscosityModel::artificial ? "artificial viscosity"
-                     : viscosity_ == sph::ViscosityModel::laminar    ? "laminar viscosity (Morris)"
+                     : viscosity_ == ViscosityModel::artificial ? "artificial viscosity"
+                     : viscosity_ == ViscosityModel::laminar    ? "laminar viscosity (Morris)"
                                                                      : "Laplacian-kernel viscosity";
   std::string force = std::string("fluid-fluid pass: pressure + ") + visc;
   if (density_ == DensityMode::continuity) {

@@ -24,6 +24,7 @@
 #include "talus/sph/boundary_pass.hpp"
 #include "talus/sph/fluid_terms.hpp"
 #include "talus/stage.hpp"
+#include "viscosity_term.hpp"
 
 namespace talus::wcsph {
 
@@ -73,6 +74,12 @@ class WcsphStage final : public Stage {
   void scale_stiff_particles(World& world);
   void refresh_reciprocals(World& world);
   std::uint64_t fluid_pass(World& world);
+  ViscositySettings viscosity_settings(const World& world) const;
+  // The fluid-wall passes (wall_passes.cpp): every wall model's wall-side hook,
+  // then the fluid against each of its wall sets, then its direct forces.
+  std::uint64_t wall_passes(World& world);
+  // Summation density: the wall sets' share sum_b m_b W_ib of rho_i.
+  std::uint64_t wall_density_passes(World& world);
   void density_summation(World& world);
   bool rates_current(const World& world) const;
   void step_euler(World& world, double dt);
@@ -83,7 +90,7 @@ class WcsphStage final : public Stage {
   Integrator integrator_;
   int verlet_steps_;
   double courant_;
-  sph::ViscosityModel viscosity_;
+  ViscosityModel viscosity_;
   double alpha_;
   DensityMode density_;
   Diffusion diffusion_;
@@ -107,6 +114,7 @@ class WcsphStage final : public Stage {
   std::vector<sph::SphBoundary*> walls_;
   sph::FluidSettings settings_;
   sph::NeighbourGrid cells_;
+  Vec3 period_;  // domain length on periodic axes (lever arms of rigid-body wall sets)
   std::vector<double> inv_rho_, rho_over_c2_;  // scratch, refilled every evaluation (grow only)
 
   // Step state.

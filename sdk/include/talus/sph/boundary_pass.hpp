@@ -1,30 +1,37 @@
-// The fluid-wall interaction pass of the wcsph stage (DESIGN.md: "Boundaries
-// are separate interaction passes with their own neighbour lists and batch
-// hooks that fill wall state"). A boundary model for SPH fluid derives from
-// SphBoundary; the stage makes one virtual call per hook per (sub)step, never
-// one per pair, and the fluid-fluid force terms never branch on the boundary.
+// Wall models of the wcsph stage (DESIGN.md: "Boundaries are separate
+// interaction passes with their own neighbour lists and batch hooks that fill
+// wall state; force terms never branch on the boundary type").
+//
+// A wall model supplies data; the stage runs the passes. A model gives its
+// wall sets (positions, the fields the pair terms read, its neighbour grid),
+// fills their state from the fluid in a batch hook (DBC continuity, the
+// extrapolated no-slip velocity), moves its walls, and takes back the
+// reaction of the fluid on a rigid body. The stage runs the fluid-fluid and
+// the fluid-wall passes with one set of pair terms, so every wall model sees
+// the fluid's mu_eff the same way. Penalty walls, which have no wall
+// particles, add their forces directly (add_direct_forces).
 //
 // Call order in one stage substep (every integrator):
-//   begin_step(world)                      once per step, state at t^n
-//   interact(world, fluid, rates)          rates at the current state: the model adds
-//                                          its forces and density rates to the fluid's
-//                                          and computes its walls' own rates
-//   advance_walls(world, t, dt)            wall state at time t = t^n + dt from the
-//                                          state saved by begin_step and the last rates
-// With summation density the stage also calls add_density(world, fluid, rho) before
-// the force pass, to add the walls' share of rho_i = sum_j m_j W_ij.
+//   begin_step(world)                   once per step, state at t^n
+//   fill_wall_state(world, fluid)       wall-side passes at the current state; the
+//                                       wall sets are valid after it
+//   (the stage's fluid-wall passes over wall_sets(); take_reaction per body set)
+//   add_direct_forces(world, fluid, rates)
+//   advance_walls(world, t, dt)         wall state at time t = t^n + dt from the
+//                                       state saved by begin_step and the last rates
+// With summation density the stage adds sum_b m_b W_ib over every wall set to
+// rho_i before the force pass (the sets as left by the last advance_walls).
 #pragma once
 
 #include <cstdint>
 #include <limits>
 #include <span>
-#include <string>
 #include <vector>
 
 #include "talus/boundary.hpp"
+#include "talus/kernel_table.hpp"
 #include "talus/sph/fluid_terms.hpp"
 #include "talus/sph/neighbour_grid.hpp"
-#include "talus/kernel_table.hpp"
 #include "talus/stage.hpp"
 #include "talus/vec3.hpp"
 
@@ -34,36 +41,28 @@ class World;
 
 namespace talus::sph {
 
-enum class ViscosityModel { artificial, laminar, laplacian };
-
-// What the stage tells its boundaries once, at its setup (after every
-// boundary's Boundary::setup has run and the fluid exists).
+// What the stage tells its wall models once, at its setup (after every
+// model's Boundary::setup has run and the fluid exists).
 struct FluidSettings {
   const KernelTable* kernel = nullptr;
-  ViscosityModel viscosity = ViscosityModel::artificial;
-  double alpha = 0.01;                  // artificial viscosity coefficient
-  std::vector<double> material_mu;      // dynamic viscosity per material, Pa s (laminar)
   bool summation_density = false;
-  Vec3 lo, hi;                          // bounds the fluid cell list covers
-  // True when FluidView::viscosity carries mu_eff per particle (non-Newtonian
-  // rheology or eddy viscosity); material_mu then holds each material's
-  // reference viscosity only.
-  bool per_particle_viscosity = false;
+  Vec3 lo, hi;  // bounds the fluid's neighbour grid covers
+  // True when a pair term reads WallSet::viscous_velocity (laminar and
+  // Laplacian viscosity); a model may then skip computing it.
+  bool viscous_velocity = false;
 };
 
-// Read-only view of the fluid for one pass; `cells` is the fluid's cell list,
-// built on `position`.
+// Read-only view of the fluid for one pass; `cells` is the fluid's
+// neighbour grid, built on `position`.
 struct FluidView {
   const NeighbourGrid* cells = nullptr;
   std::span<const Vec3> position, velocity;
   std::span<const double> density, pressure, sound_speed, mass;
   std::span<const std::int32_t> material;
   // Apparent viscosity mu_eff per fluid particle (Pa s) when the stage runs the
-  // three-pass non-Newtonian / turbulent viscosity; empty otherwise (then
-  // FluidSettings::material_mu holds). A wall's laminar term should then use
-  // mu_eff[i] for the fluid particle i (no-slip: mu_wall = mu_i).
+  // three-pass non-Newtonian / turbulent viscosity; empty otherwise.
   std::span<const double> viscosity;
-  std::span<const double> inv_density;  // 1/rho per fluid particle (continuity of a wall against the fluid)
+  std::span<const double> inv_density;  // 1/rho per fluid particle
 
   // The fluid as the neighbour set of a wall-side pass.
   Neighbours neighbours() const {
@@ -72,11 +71,33 @@ struct FluidView {
   }
 };
 
-// The fluid's rates; a boundary adds to them (never overwrites).
+// The fluid's rates; a wall adds to them (never overwrites).
 struct FluidRates {
   std::span<Vec3> acceleration;     // m/s^2
   std::span<double> density_rate;   // kg/m^3/s (continuity; unused with summation density)
   std::span<double> visc_rate;      // 1/s, max |v_ij.x_ij|/(r^2+eta^2) for the time-step bound
+};
+
+// A rigid body a wall set belongs to: the fluid's reaction on it is summed
+// (force, and torque about `centre`) and handed back by take_reaction.
+struct RigidBodyFrame {
+  Vec3 centre;  // the body's centroid
+  Vec3 lo, hi;  // bounding box of its wall particles; fluid farther than the kernel support is skipped
+};
+
+// One set of wall particles as the fluid's pair terms see it.
+struct WallSet {
+  const NeighbourGrid* cells = nullptr;  // built on `position`
+  std::span<const Vec3> position;
+  // The wall particles' fields: velocity (their own, seen by pressure, continuity
+  // and artificial viscosity), density, pressure, sound_speed, mass, material,
+  // inv_density (1/rho, refreshed with the density).
+  Neighbours fields;
+  // The velocity the laminar and Laplacian viscosity see (a mirrored no-slip
+  // velocity); fields.velocity where the model has none.
+  const Vec3* viscous_velocity = nullptr;
+  bool rigid_body = false;  // then `body` holds and the stage sums the reaction
+  RigidBodyFrame body;
 };
 
 class TALUS_API SphBoundary : public Boundary {
@@ -87,19 +108,23 @@ class TALUS_API SphBoundary : public Boundary {
   virtual void bind(World& world, const FluidSettings& settings) = 0;
   // Remembers the wall state at the start of a step.
   virtual void begin_step(World& world) = 0;
-  // Adds the walls' forces and density rates to the fluid and computes the
-  // walls' own rates, at the current positions.
-  virtual void interact(World& world, const FluidView& fluid, const FluidRates& rates) = 0;
-  // Summation density: adds sum_b m_b W_ib over wall particles b to rho[i].
-  virtual void add_density(const World& world, const FluidView& fluid, std::span<double> rho) = 0;
+  // Wall-side passes at the current positions (the walls' own density rates,
+  // the viscous velocity); returns the pair evaluations.
+  virtual std::uint64_t fill_wall_state(World& /*world*/, const FluidView& /*fluid*/) { return 0; }
+  // The model's wall sets, valid from fill_wall_state (or advance_walls) to the next advance_walls.
+  virtual std::span<const WallSet> wall_sets() const { return {}; }
+  // The fluid's force and torque on the rigid body of wall set `set`, summed by the stage's pass.
+  virtual void take_reaction(World& /*world*/, std::size_t /*set*/, const Vec3& /*force*/, const Vec3& /*torque*/) {}
+  // Forces that are not pair terms (penalty walls): added to the fluid's rates.
+  virtual std::uint64_t add_direct_forces(World& /*world*/, const FluidView& /*fluid*/, const FluidRates& /*rates*/) {
+    return 0;
+  }
   // Moves the walls to `time` and advances their state by dt from the state
-  // saved in begin_step with the rates of the last interact().
+  // saved in begin_step with the rates of the last fill_wall_state().
   virtual void advance_walls(World& world, double time, double dt) = 0;
   // Largest stable time step this model allows (a penalty stiffness), s.
   virtual double stable_time_step(const World& /*world*/) const { return std::numeric_limits<double>::infinity(); }
-  // Pair evaluations of the last interact(), for throughput reports.
-  virtual std::uint64_t pair_count() const { return 0; }
-  // What `talus plan` lists for this model.
+  // What `talus plan` lists for this model's own passes.
   virtual void describe_passes(StagePlan& plan) const = 0;
 };
 

@@ -1,10 +1,11 @@
 // Pair terms of weakly compressible SPH (Monaghan 1994/2005; the coastline
 // seed §2.3 as implemented by DualSPHysics, Domínguez et al. 2022), written
 // once and used by the fluid-fluid pass of the wcsph stage and by the
-// fluid-wall passes of boundary models. i is the particle summing, j its
-// neighbour; dx = x_i - x_j, grad = grad_i W_ij. Each term reads the
-// neighbour's fields through a Neighbours view and the i-state from the
-// pass's Sums (duck-typed members named below).
+// fluid-wall passes over the wall sets of boundary models. i is the particle
+// summing, j its neighbour; dx = x_i - x_j, grad = grad_i W_ij. Each term
+// reads the neighbour's fields through a Neighbours view and the i-state from
+// the pass's Sums (duck-typed members: v, rho, inv_rho, p, c, mu, kh, mat; the
+// sums acc, drho, visc).
 #pragma once
 
 #include <algorithm>
@@ -27,21 +28,6 @@ struct Neighbours {
   const double* inv_density = nullptr;  // 1/rho, refreshed with the density (saves divisions per pair)
   const double* rho_over_c2 = nullptr;  // rho/c^2, for the Fourtakas diffusion only
   const double* viscosity = nullptr;    // mu_eff per particle, Pa s (non-Newtonian / turbulent passes only)
-};
-
-// What a fluid particle i carries through a force pass, and what it sums.
-struct FluidSums {
-  Vec3 v;             // v_i
-  double rho = 0.0;   // rho_i
-  double inv_rho = 0.0;  // 1/rho_i
-  double p = 0.0;     // p_i
-  double c = 0.0;     // c_i
-  double mu = 0.0;    // dynamic viscosity of i's material (laminar)
-  double kh = 0.0;    // rho_i / c_i^2: hydrostatic density gradient per unit g.dx (Fourtakas)
-  std::int32_t mat = 0;  // material of i (density diffusion acts within one material)
-  Vec3 acc;           // sum of accelerations, m/s^2
-  double drho = 0.0;  // sum of density rates, kg/m^3/s
-  double visc = 0.0;  // max |v_ij . dx| / (r^2 + eta^2), 1/s (time-step bound)
 };
 
 // Symmetric pressure force, momentum conserving (Monaghan 2005 eq. 3.6; rock-

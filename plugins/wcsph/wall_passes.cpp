@@ -1,0 +1,144 @@
+// The fluid-wall passes of the wcsph stage. Wall models supply wall sets
+// (sph/boundary_pass.hpp); the stage runs, for every set, one pass in which
+// each fluid particle gathers the set's wall particles with the fluid-fluid
+// terms less density diffusion: pressure, the scene's viscous term (as seen
+// against a wall, viscosity_term.hpp) and continuity. A rigid body's set also
+// sums the reaction on the body in the same traversal.
+//
+// Reaction: the force on i from the body is m_i a_i(body); the body gets
+// -m_i a_i. Its torque about the centroid X sums (x_b - X) x (-m_i a_ib) over
+// pairs = (x_i - X) x (-m_i a_i) + m_i sum_b dx_ib x a_ib (dx = x_i - x_b), so
+// non-central (viscous) pair forces contribute their exact moment
+// (sph::WithPairMoment). A body may straddle a periodic boundary (the dda stage
+// does not wrap blocks), so x_i - X is taken as its minimum image, for the lever
+// arm and for the bounding-box filter alike.
+#include <algorithm>
+
+#include "fluid_fields.hpp"
+#include "fluid_sums.hpp"
+#include "talus/periodic.hpp"
+#include "talus/sph/pair_loop.hpp"
+#include "talus/world.hpp"
+#include "viscosity_term.hpp"
+#include "wcsph_stage.hpp"
+
+namespace talus::wcsph {
+
+namespace {
+
+struct BodyReaction {
+  Vec3 force, torque;
+  BodyReaction& operator+=(const BodyReaction& o) {
+    force += o.force;
+    torque += o.torque;
+    return *this;
+  }
+};
+
+struct WallPass {
+  const sph::FluidView& fluid;
+  const sph::FluidRates& rates;
+  const sph::WallSet& set;
+  const KernelTable& kernel;
+  const double* material_mu;  // where the fluid has no mu_eff
+  bool continuity;
+  Vec3 period;
+
+  template <class S>
+  S start(Index i) const {
+    S s;
+    s.v = fluid.velocity[i];
+    s.rho = fluid.density[i];
+    s.inv_rho = 1.0 / s.rho;
+    s.p = fluid.pressure[i];
+    s.c = fluid.sound_speed[i];
+    s.mu = fluid.viscosity.empty() ? material_mu[fluid.material[i]] : fluid.viscosity[i];
+    return s;
+  }
+  void add_rates(Index i, const FluidSums& s) const {
+    rates.acceleration[i] += s.acc;
+    if (continuity) rates.density_rate[i] += s.drho;
+    rates.visc_rate[i] = std::max(rates.visc_rate[i], s.visc);
+  }
+
+  template <class... Terms>
+  std::uint64_t against_walls(const Terms&... terms) const {
+    auto first = [&](Index i) { return start<FluidSums>(i); };
+    auto finish = [&](Index i, const FluidSums& s) { add_rates(i, s); };
+    return sph::pair_pass(fluid.position.size(), fluid.position, *set.cells, set.position, kernel, sph::other_set,
+                          first, finish, terms...);
+  }
+
+  template <class... Terms>
+  BodyReaction against_body(std::uint64_t& pairs, const Terms&... terms) const {
+    const double radius = kernel.support_radius();
+    const Vec3 pad{radius, radius, radius};
+    const Vec3 lo = set.body.lo - pad, hi = set.body.hi + pad, centre = set.body.centre;
+    auto arm_of = [&](Index i) { return minimum_image(fluid.position[i] - centre, period); };  // lever arm
+    auto skip = [&](Index i) {
+      const Vec3 xi = centre + arm_of(i);  // the image near the body
+      return xi.x < lo.x || xi.y < lo.y || xi.z < lo.z || xi.x > hi.x || xi.y > hi.y || xi.z > hi.z;
+    };
+    auto first = [&](Index i) { return start<BodySums>(i); };
+    auto finish = [&](Index i, const BodySums& s, BodyReaction& on_body) {
+      add_rates(i, s);
+      const double mi = fluid.mass[i];
+      const Vec3 force = s.acc * (-mi);
+      on_body.force += force;
+      on_body.torque += cross(arm_of(i), force) + s.moment * mi;
+    };
+    return sph::reducing_pair_pass<BodyReaction>(fluid.position.size(), fluid.position, *set.cells, set.position,
+                                                 kernel, sph::other_set, pairs, skip, first, finish,
+                                                 sph::with_pair_moment(terms...));
+  }
+};
+
+}  // namespace
+
+std::uint64_t WcsphStage::wall_passes(World& world) {
+  FluidFields f(world.fluid);
+  sph::FluidView fluid{&cells_, f.x, f.v, f.rho, f.p, f.c, f.m, f.mat};
+  fluid.inv_density = inv_rho_;
+  if (per_particle_viscosity_) fluid.viscosity = world.fluid.scalar("mu_eff");
+  const sph::FluidRates rates{f.a, f.drho, f.visc};
+  const ViscositySettings viscosity = viscosity_settings(world);
+  const bool continuity = density_ == DensityMode::continuity;
+  std::uint64_t pairs = 0;
+  for (sph::SphBoundary* wall : walls_) {
+    pairs += wall->fill_wall_state(world, fluid);
+    const std::span<const sph::WallSet> sets = wall->wall_sets();
+    for (std::size_t k = 0; k < sets.size(); ++k) {
+      const sph::WallSet& set = sets[k];
+      const WallPass pass{fluid, rates, set, world.kernel, material_mu_.data(), continuity, period_};
+      sph::Neighbours viscous_nb = set.fields;
+      viscous_nb.velocity = set.viscous_velocity;
+      const sph::PressureForce pressure{set.fields};
+      const sph::Continuity cont{set.fields};  // its rate is added only with continuity density
+      pairs += with_viscosity_term<Neighbour::wall>(viscosity, set.fields, viscous_nb, [&](const auto& viscous) {
+        if (!set.rigid_body) return pass.against_walls(pressure, viscous, cont);
+        std::uint64_t body_pairs = 0;
+        const BodyReaction reaction = pass.against_body(body_pairs, pressure, viscous, cont);
+        wall->take_reaction(world, k, reaction.force, reaction.torque);
+        return body_pairs;
+      });
+    }
+    pairs += wall->add_direct_forces(world, fluid, rates);
+  }
+  return pairs;
+}
+
+std::uint64_t WcsphStage::wall_density_passes(World& world) {
+  FluidFields f(world.fluid);
+  const std::span<const Vec3> x = f.x;
+  std::uint64_t pairs = 0;
+  for (const sph::SphBoundary* wall : walls_)
+    for (const sph::WallSet& set : wall->wall_sets()) {
+      auto start = [](Index) { return sph::DensitySums{}; };
+      auto finish = [&](Index i, const sph::DensitySums& sum) { f.rho[i] += sum.rho_sum; };
+      pairs += sph::pair_pass(x.size(), x, *set.cells, set.position, world.kernel, sph::other_set, start, finish,
+                              sph::DensitySum{set.fields.mass});
+    }
+  return pairs;
+}
+
+}  // namespace talus::wcsph
