@@ -67,8 +67,8 @@ ParamSet ProbesWriter::describe() {
   p.string_list("wall_forces")
       .optional()
       .doc(
-          "wall bodies whose pressure force from the fluid is written (NAME_fx, NAME_fy[, NAME_fz]): "
-          "-sum_a sum_j m_a m_j (p_a/rho_a^2 + p_j/rho_j^2) grad_a W over the body's wall particles a");
+          "wall bodies whose pressure force from the fluid is written (NAME_fx, NAME_fy[, NAME_fz]): the solver's "
+          "pressure term -sum_a sum_j m_a m_j (p_a + p_j)/(rho_a rho_j) grad_a W over the body's wall particles a");
   p.vector_list("wall_sensors")
       .optional()
       .unit("m")
@@ -254,7 +254,7 @@ std::string ProbesWriter::comment_lines(const OutputContext& context, const Worl
   if (!wall_bodies_.empty())
     out +=
         "# wall forces: pressure force of the fluid on the wall particles of each body, "
-        "-sum_a sum_j m_a m_j (p_a/rho_a^2 + p_j/rho_j^2) grad_a W, N\n";
+        "-sum_a sum_j m_a m_j (p_a + p_j)/(rho_a rho_j) grad_a W (the solver's pressure term), N\n";
   if (!sensors_.empty()) {
     out += "# wall sensors (normal pressure force of the fluid on the wall particles behind a patch of the wall surface "
            "/ the patch area, force as for wall forces):";
@@ -417,11 +417,11 @@ double ProbesWriter::integral(Quantity q, const World& world) const {
 }
 
 Vec3 ProbesWriter::wall_force(int body, const World& world) const {
-  // The pressure term of the SPH momentum equation between fluid particles j
-  // and the body's wall particles a (symmetric form, Monaghan 2005 eq. 3.13):
-  //   F = -sum_a m_a sum_j m_j (p_a/rho_a^2 + p_j/rho_j^2) grad_a W_aj,
-  // the force the fluid's pressure exerts on the wall. For a flat wall under a
-  // uniform pressure p it tends to p A along the inward normal.
+  // The pressure term the solver applies between fluid particles j and the
+  // body's wall particles a (sph::PressureForce), from the wall's side:
+  //   F = -sum_a m_a sum_j m_j (p_a + p_j)/(rho_a rho_j) grad_a W_aj,
+  // minus the force the walls' pressure exerts on the fluid. For a flat wall
+  // under a uniform pressure p it tends to p A along the inward normal.
   const ParticleStore& wall = world.boundary;
   const auto owner = wall.body();
   const ForceFields fields(world);
@@ -441,19 +441,32 @@ ProbesWriter::ForceFields::ForceFields(const World& world)
     : xa(world.boundary.position()),
       ma(world.boundary.scalar("mass")),
       rhoa(world.boundary.scalar("density")),
-      pa(world.boundary.scalar("pressure")),
-      mj(world.fluid.scalar("mass")),
-      rhoj(world.fluid.scalar("density")),
-      pj(world.fluid.scalar("pressure")) {}
+      pa(world.boundary.scalar("pressure")) {
+  const auto rho = world.fluid.scalar("density");
+  inv_rho.resize(rho.size());
+  for (std::size_t j = 0; j < rho.size(); ++j) inv_rho[j] = 1.0 / rho[j];
+  fluid.mass = world.fluid.scalar("mass").data();
+  fluid.pressure = world.fluid.scalar("pressure").data();
+  fluid.inv_density = inv_rho.data();
+}
 
 Vec3 ProbesWriter::particle_force(std::size_t a, const ForceFields& s) const {
-  const double qa = s.pa[a] / (s.rhoa[a] * s.rhoa[a]);
+  struct Sums {
+    double p, inv_rho;
+    Vec3 acc;
+  } sums{s.pa[a], 1.0 / s.rhoa[a], {}};
+  const sph::PressureForce pressure{s.fluid};
   const KernelTable& kernel = sampler_.kernel();
-  Vec3 f{};
   sampler_.for_each_neighbour(s.xa[a], [&](Index j, const Vec3& dx, double r) {
-    f -= (s.mj[j] * (qa + s.pj[j] / (s.rhoj[j] * s.rhoj[j])) * kernel.dw_over_r(r)) * dx;
+    sph::Pair q;
+    q.j = j;
+    q.dx = dx;
+    q.r2 = r * r;
+    q.r = r;
+    q.dw_r = kernel.dw_over_r(r);
+    pressure.pair(q, sums);
   });
-  return f * s.ma[a];
+  return sums.acc * s.ma[a];
 }
 
 // The wall particles behind each sensor's patch: at a depth 0 <= -(x_a - at).n

@@ -29,6 +29,7 @@
 #include "file_io.hpp"
 #include "sph_sampler.hpp"
 #include "talus/params.hpp"
+#include "talus/sph/fluid_terms.hpp"
 #include "talus/writer.hpp"
 
 namespace talus::writers {
@@ -80,7 +81,9 @@ class ProbesWriter final : public Writer {
   struct ForceFields {
     explicit ForceFields(const World& world);
     std::span<const Vec3> xa;
-    std::span<const double> ma, rhoa, pa, mj, rhoj, pj;
+    std::span<const double> ma, rhoa, pa;
+    std::vector<double> inv_rho;  // 1/rho of the fluid particles
+    sph::Neighbours fluid;        // the fluid as the solver's pressure term reads it
   };
   // The pressure force of the fluid on wall particle a (needs the sampler bound to the fluid).
   Vec3 particle_force(std::size_t a, const ForceFields& fields) const;
