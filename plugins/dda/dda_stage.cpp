@@ -5,11 +5,10 @@
 #include <cstdio>
 #include <numeric>
 
-#include <Eigen/Eigenvalues>
 #include <omp.h>
 
 #include "block_shape.hpp"
-#include "state_archive.hpp"
+#include "rigid_motion.hpp"
 #include "talus/error.hpp"
 #include "talus/world.hpp"
 
@@ -18,49 +17,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-Vec3 multiply(const std::array<double, 9>& m, const Vec3& v) {
-  return {m[0] * v.x + m[1] * v.y + m[2] * v.z, m[3] * v.x + m[4] * v.y + m[5] * v.z,
-          m[6] * v.x + m[7] * v.y + m[8] * v.z};
-}
-
-std::array<double, 9> inverse(const std::array<double, 9>& m) {
-  const double c00 = m[4] * m[8] - m[5] * m[7], c01 = m[5] * m[6] - m[3] * m[8], c02 = m[3] * m[7] - m[4] * m[6];
-  const double det = m[0] * c00 + m[1] * c01 + m[2] * c02;
-  const double s = 1.0 / det;
-  return {c00 * s, (m[2] * m[7] - m[1] * m[8]) * s, (m[1] * m[5] - m[2] * m[4]) * s,
-          c01 * s, (m[0] * m[8] - m[2] * m[6]) * s, (m[2] * m[3] - m[0] * m[5]) * s,
-          c02 * s, (m[1] * m[6] - m[0] * m[7]) * s, (m[0] * m[4] - m[1] * m[3]) * s};
-}
-
-double smallest_eigenvalue(const std::array<double, 9>& m) {
-  Eigen::Matrix3d a;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) a(i, j) = m[3 * i + j];
-  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(a, Eigen::EigenvaluesOnly).eigenvalues()(0);
-}
-
-// Quaternion of a rotation matrix given by its columns (Shepperd's method).
-Quaternion from_columns(const Vec3& c0, const Vec3& c1, const Vec3& c2) {
-  const double m00 = c0.x, m10 = c0.y, m20 = c0.z, m01 = c1.x, m11 = c1.y, m21 = c1.z, m02 = c2.x, m12 = c2.y,
-               m22 = c2.z;
-  const double tr = m00 + m11 + m22;
-  Quaternion q;
-  if (tr > 0.0) {
-    const double s = 2.0 * std::sqrt(1.0 + tr);
-    q = {0.25 * s, (m21 - m12) / s, (m02 - m20) / s, (m10 - m01) / s};
-  } else if (m00 > m11 && m00 > m22) {
-    const double s = 2.0 * std::sqrt(1.0 + m00 - m11 - m22);
-    q = {(m21 - m12) / s, 0.25 * s, (m01 + m10) / s, (m02 + m20) / s};
-  } else if (m11 > m22) {
-    const double s = 2.0 * std::sqrt(1.0 + m11 - m00 - m22);
-    q = {(m02 - m20) / s, (m01 + m10) / s, 0.25 * s, (m12 + m21) / s};
-  } else {
-    const double s = 2.0 * std::sqrt(1.0 + m22 - m00 - m11);
-    q = {(m10 - m01) / s, (m02 + m20) / s, (m12 + m21) / s, 0.25 * s};
-  }
-  return normalised(q);
-}
 
 double sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
 
@@ -502,121 +458,6 @@ std::string DdaStage::status(const World& world) const {
                   format("%.3g", dt_stable_) + " s";
   if (last_substeps_ > 1) s += " x " + std::to_string(last_substeps_) + " sub-steps";
   return s + ", E kin " + format("%.4g", e.kinetic) + " J, dissipated " + format("%.4g", e.dissipated) + " J";
-}
-
-}  // namespace talus::dda
-
-namespace talus::dda {
-
-namespace {
-
-// ContactKey has padding: its fields go one by one so that equal states
-// give equal bytes (restarts are compared bit for bit).
-void archive_keys(StateWriter& w, const std::vector<ContactKey>& keys) {
-  w.value<std::uint64_t>(keys.size());
-  for (const auto& k : keys) {
-    w.value(k.model);
-    w.value(k.a);
-    w.value(k.b);
-    w.value(k.feature);
-  }
-}
-
-void archive_keys(StateReader& r, std::vector<ContactKey>& keys) {
-  std::uint64_t n = 0;
-  r.value(n);
-  if (n > r.in.size() / 20) r.truncated();
-  keys.resize(n);
-  for (auto& k : keys) {
-    r.value(k.model);
-    r.value(k.a);
-    r.value(k.b);
-    r.value(k.feature);
-  }
-}
-
-template <class Archive, class Set>
-void archive_contacts(Archive& a, Set& c) {
-  archive_keys(a, c.key);
-  a.vector(c.point);
-  a.vector(c.normal);
-  a.vector(c.velocity);
-  a.vector(c.shear);
-  a.vector(c.force);
-  a.vector(c.gap);
-  a.vector(c.area);
-  a.vector(c.mass);
-  a.vector(c.strain_energy);
-  a.vector(c.dissipated);
-  a.vector(c.state);
-}
-
-}  // namespace
-
-std::string DdaStage::save_state() const {
-  StateWriter w;
-  w.value(static_cast<std::uint8_t>(started_));
-  w.value(dt_stable_);
-  w.value(slipping_);
-  w.value(energy_ ? *energy_ : BlockEnergy{});
-  w.vector(momentum_);
-  archive_contacts(w, const_cast<ContactSet&>(contacts_));
-  return std::move(w.out);
-}
-
-void DdaStage::load_state(std::string_view bytes) {
-  StateReader r{bytes};
-  std::uint8_t started = 0;
-  r.value(started);
-  started_ = started != 0;
-  r.value(dt_stable_);
-  r.value(slipping_);
-  BlockEnergy energy;
-  r.value(energy);
-  if (energy_) *energy_ = energy;
-  std::vector<Vec3> momentum;
-  r.vector(momentum);
-  if (momentum.size() != momentum_.size())
-    throw InputError("error: checkpoint: it has " + std::to_string(momentum.size()) + " blocks, this scene " +
-                     std::to_string(momentum_.size()));
-  momentum_ = std::move(momentum);
-  archive_contacts(r, contacts_);
-  r.finish();
-  check_restored(energy);
-}
-
-// A stage state that is intact but wrong must not reach the contact loops,
-// which index blocks and models by the keys and rely on their order.
-void DdaStage::check_restored(const BlockEnergy& energy) const {
-  auto fail = [](const std::string& what) { throw InputError("error: checkpoint: the dda stage's state: " + what); };
-  if (!(dt_stable_ > 0.0)) fail("stable time step " + std::to_string(dt_stable_) + " is not > 0");
-  for (double e : {energy.kinetic, energy.potential, energy.strain, energy.dissipated, energy.external_work})
-    if (!std::isfinite(e)) fail("a block energy is not finite");
-  for (const Vec3& m : momentum_)
-    if (!is_finite(m)) fail("a block's angular momentum is not finite");
-  const ContactSet& c = contacts_;
-  const std::size_t n = c.key.size();
-  for (std::size_t size : {c.point.size(), c.normal.size(), c.velocity.size(), c.shear.size(), c.force.size(),
-                           c.gap.size(), c.area.size(), c.mass.size(), c.strain_energy.size(), c.dissipated.size(),
-                           c.state.size()})
-    if (size != n)
-      fail("its contact arrays disagree in length (" + std::to_string(size) + " and " + std::to_string(n) + " keys)");
-  const std::size_t blocks = momentum_.size();
-  for (std::size_t k = 0; k < n; ++k) {
-    const ContactKey& key = c.key[k];
-    const std::string contact = "contact " + std::to_string(k);
-    if (key.model >= models_.size())
-      fail(contact + " names contact model " + std::to_string(key.model) + "; the scene has " +
-           std::to_string(models_.size()));
-    if (key.a >= blocks || key.b >= blocks || key.a == key.b)
-      fail(contact + " joins blocks " + std::to_string(key.a) + " and " + std::to_string(key.b) + "; the scene has " +
-           std::to_string(blocks) + " blocks");
-    if (k > 0 && key < c.key[k - 1]) fail(contact + " is out of order (contacts are sorted by model and blocks)");
-    if (!is_finite(c.point[k]) || !is_finite(c.normal[k]) || !is_finite(c.velocity[k]) || !is_finite(c.shear[k]) ||
-        !is_finite(c.force[k]) || !std::isfinite(c.gap[k]) || !std::isfinite(c.area[k]) || !std::isfinite(c.mass[k]) ||
-        !std::isfinite(c.strain_energy[k]) || !std::isfinite(c.dissipated[k]))
-      fail(contact + " has a non-finite value");
-  }
 }
 
 }  // namespace talus::dda

@@ -1,0 +1,85 @@
+// The summary is built from the stages and writers themselves, after the writers
+// have closed, so it names every file a run wrote.
+#include "run_summary.hpp"
+
+#include <omp.h>
+#include <sys/resource.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "number_text.hpp"
+#include "progress.hpp"
+#include "simulation.hpp"
+#include "talus/blocks.hpp"
+#include "talus/error.hpp"
+#include "talus/stage.hpp"
+#include "talus/world.hpp"
+#include "talus/writer.hpp"
+
+namespace talus {
+
+double peak_memory_mib() {
+  struct rusage usage {};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;
+}
+
+void write_summary_file(const RunSummary& r, const std::string& path) {
+  const World& world = r.world;
+  nlohmann::json summary = {{"scene", r.scene_path},
+                            {"steps", r.steps},
+                            {"time", world.time},
+                            {"wall_seconds", r.wall_seconds},
+                            {"fluid_particles", world.fluid.size()},
+                            {"wall_particles", world.boundary.size()},
+                            {"blocks", world.blocks ? world.blocks->size() : 0},
+                            {"particle_steps", r.particle_steps},
+                            {"peak_memory_mib", r.peak_memory_mib},
+                            {"removed", world.removed},
+                            {"threads", omp_get_max_threads()},
+                            {"finish", r.finish_lines}};
+  nlohmann::json statuses = nlohmann::json::object();
+  for (std::size_t i = 0; i < r.stages.size(); ++i) statuses[r.stage_names[i]] = r.stages[i]->status(world);
+  summary["stages"] = statuses;
+  nlohmann::json files = nlohmann::json::object();
+  for (const auto& w : r.writers) files[w.type] = w.writer->files();
+  summary["outputs"] = files;
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << summary.dump(2) << "\n";
+    if (!out) throw RunError("error: cannot write " + tmp + ": " + std::strerror(errno));
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+void print_summary(const RunSummary& r) {
+  const World& world = r.world;
+  const std::uint64_t steps = r.steps;
+  const double wall = r.wall_seconds;
+  std::printf("talus: done: %llu steps to t = %s s in %s wall (%.3g steps/s, %.3g M particle-steps/s), "
+              "peak memory %.0f MiB\n",
+              static_cast<unsigned long long>(steps), fixed(world.time, 6).c_str(), clock_text(wall).c_str(),
+              wall > 0 ? steps / wall : 0.0, wall > 0 ? r.particle_steps / wall / 1e6 : 0.0, r.peak_memory_mib);
+  if (world.removed) std::printf("       %llu fluid particles left the domain and were removed\n",
+                                 static_cast<unsigned long long>(world.removed));
+  for (std::size_t i = 0; i < r.stages.size(); ++i) {
+    const std::string st = r.stages[i]->status(world);
+    if (!st.empty()) std::printf("       %s: %s\n", r.stage_names[i].c_str(), st.c_str());
+  }
+  for (const auto& line : r.finish_lines) std::printf("       %s\n", line.c_str());
+  for (const auto& w : r.writers) {
+    const auto files = w.writer->files();
+    if (files.empty()) continue;
+    std::printf("       %s: %s%s\n", w.type.c_str(), files.back().c_str(),
+                files.size() > 1 ? (" (and " + std::to_string(files.size() - 1) + " more)").c_str() : "");
+  }
+}
+
+}  // namespace talus

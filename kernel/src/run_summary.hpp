@@ -1,0 +1,37 @@
+// The end of a run: the JSON summary file (`talus run --summary`, read by
+// tools/verify.py) and the "talus: done" lines, from the same figures.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace talus {
+
+class Stage;
+class World;
+struct ScheduledWriter;
+
+// What the summary reports; the references are the simulation's own.
+struct RunSummary {
+  const std::string& scene_path;
+  const World& world;
+  const std::vector<std::unique_ptr<Stage>>& stages;
+  const std::vector<std::string>& stage_names;
+  const std::vector<ScheduledWriter>& writers;
+  const std::vector<std::string>& finish_lines;  // the stages' finish() lines
+  std::uint64_t steps;                           // taken by this process (a restart counts from its checkpoint)
+  std::uint64_t particle_steps;
+  double wall_seconds;
+  double peak_memory_mib;
+};
+
+// The peak resident memory of this process so far, MiB.
+double peak_memory_mib();
+
+// Writes `path` through a temporary file, renamed when complete; throws RunError.
+void write_summary_file(const RunSummary& summary, const std::string& path);
+void print_summary(const RunSummary& summary);
+
+}  // namespace talus

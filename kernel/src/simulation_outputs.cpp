@@ -1,0 +1,94 @@
+// The writers' output schedule and the checkpoint files: what the writers
+// have written, writing what is due, and saving and restoring the run state.
+#include "simulation.hpp"
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "checkpoint.hpp"
+#include "number_text.hpp"
+#include "output_schedule.hpp"
+#include "talus/error.hpp"
+#include "talus/stage.hpp"
+#include "talus/writer.hpp"
+
+namespace talus {
+
+std::vector<std::string> Simulation::output_files() const {
+  std::vector<std::string> files;
+  for (const auto& w : writers_)
+    for (auto& f : w.writer->files()) files.push_back(f);
+  return files;
+}
+
+std::string Simulation::last_output() const {
+  std::string newest;
+  for (const auto& w : writers_) {
+    const auto files = w.writer->files();
+    if (!files.empty()) newest = files.back();
+  }
+  if (newest.empty()) return "none written yet";
+  return newest + " (t = " + fixed(last_output_time_) + " s)";
+}
+
+void Simulation::write_due_outputs(bool force) {
+  for (auto& w : writers_) {
+    const double eps = w.every_steps ? 0.0 : schedule_eps(world_.end_time, w.every);
+    const bool due = w.every_steps ? world_.step >= w.next_step : world_.time >= w.next_time - eps;
+    if (!due && !force) continue;
+    w.writer->write(world_);
+    last_output_time_ = world_.time;
+    if (w.every_steps) {
+      while (w.next_step <= world_.step) w.next_step += w.every_steps;
+    } else {
+      w.next_time = next_due(w.next_time, w.every, world_.time, eps);
+    }
+  }
+}
+
+void Simulation::write_checkpoint(const std::string& path) const {
+  RunState state;
+  state.scene_hash = text_hash(scene_.text);
+  for (const auto& s : stages_) state.stage_states.push_back(s->save_state());
+  for (const auto& w : writers_) {
+    state.writer_next_time.push_back(w.next_time);
+    state.writer_next_step.push_back(w.next_step);
+  }
+  state.last_output_time = last_output_time_;
+  save_checkpoint(path, world_, state);
+}
+
+void Simulation::read_checkpoint(const std::string& path) {
+  RunState state = load_checkpoint(path, world_, text_hash(scene_.text));
+  if (state.stage_states.size() != stages_.size())
+    throw InputError("error: checkpoint " + path + ": it has the state of " + std::to_string(state.stage_states.size()) +
+                     " stages, this scene's pipeline has " + std::to_string(stages_.size()));
+  if (state.writer_next_time.size() != writers_.size())
+    throw InputError("error: checkpoint " + path + ": it has the schedule of " +
+                     std::to_string(state.writer_next_time.size()) + " outputs, this scene has " +
+                     std::to_string(writers_.size()));
+  for (std::size_t i = 0; i < stages_.size(); ++i) {
+    try {
+      stages_[i]->load_state(state.stage_states[i]);
+    } catch (const InputError& e) {
+      // Stages see only their bytes: the file and the stage are named here.
+      std::string why = e.what();
+      for (const char* prefix : {"error: checkpoint: ", "error: "})
+        if (why.rfind(prefix, 0) == 0) {
+          why.erase(0, std::strlen(prefix));
+          break;
+        }
+      throw InputError("error: checkpoint " + path + ": stage " + std::to_string(i + 1) + " (" + stage_names_[i] +
+                       "): " + why);
+    }
+  }
+  for (std::size_t i = 0; i < writers_.size(); ++i) {
+    writers_[i].next_time = state.writer_next_time[i];
+    writers_[i].next_step = state.writer_next_step[i];
+  }
+  last_output_time_ = state.last_output_time;
+  world_.refresh_material_index();
+}
+
+}  // namespace talus

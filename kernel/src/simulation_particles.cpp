@@ -1,0 +1,69 @@
+// Per-step upkeep of the fluid particles: wrapping periodic axes and removing
+// escaped particles, re-sorting them for locality, and stopping on non-finite values.
+#include "simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "number_text.hpp"
+#include "talus/error.hpp"
+
+namespace talus {
+
+void Simulation::remove_escaped_particles() {
+  ParticleStore& fluid = world_.fluid;
+  const std::size_t n = fluid.size();
+  auto x = fluid.position();
+  escaped_.assign(n, 0);
+  std::size_t count = 0;
+#pragma omp parallel for reduction(+ : count) schedule(static) if (n > 4096)
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int a = 0; a < world_.dim; ++a) {
+      const double L = world_.hi[a] - world_.lo[a];
+      if (world_.periodic[a]) {
+        if (x[i][a] < world_.lo[a]) x[i][a] += L;
+        if (x[i][a] >= world_.hi[a]) x[i][a] -= L;
+      } else if (x[i][a] < world_.lo[a] || x[i][a] > world_.hi[a]) {
+        escaped_[i] = 1;
+      }
+    }
+    count += escaped_[i];
+  }
+  if (count == 0) return;
+  world_.removed += fluid.remove_if(escaped_);
+  world_.refresh_material_index();
+}
+
+void Simulation::resort_particles() {
+  if (world_.fluid.size() == 0) return;
+  const double cell = world_.h > 0 ? world_.kernel.support_radius() : 2.0 * world_.dp;
+  if (!(cell > 0)) return;
+  resort_cells_.configure(world_.dim, world_.lo, world_.hi, cell, {});
+  resort_cells_.build(world_.fluid.position());
+  world_.fluid.reorder(resort_cells_.order());
+  world_.refresh_material_index();
+}
+
+void Simulation::check_finite() const {
+  const ParticleStore& f = world_.fluid;
+  const std::size_t n = f.size();
+  const auto x = f.position();
+  const auto u = f.vector("velocity");
+  const auto rho = f.scalar("density");
+  const auto p = f.scalar("pressure");
+  std::size_t bad = n;
+#pragma omp parallel for reduction(min : bad) schedule(static) if (n > 4096)
+  for (std::size_t i = 0; i < n; ++i)
+    if (!is_finite(x[i]) || !is_finite(u[i]) || !std::isfinite(rho[i]) || !std::isfinite(p[i])) bad = std::min(bad, i);
+  if (bad == n) return;
+  const char* what = !is_finite(x[bad]) ? "position" : !is_finite(u[bad]) ? "velocity" : !std::isfinite(rho[bad]) ? "density" : "pressure";
+  const int body = f.body()[bad];
+  std::ostringstream msg;
+  msg << "error: step " << world_.step << " (t = " << fixed(world_.time, 6) << " s): particle " << f.ids()[bad]
+      << " of body '" << world_.bodies[body].name << "' at " << vec_text(x[bad], world_.dim) << " has non-finite " << what
+      << "\n       last good output: " << last_output() << "; stopping.";
+  throw RunError(msg.str());
+}
+
+}  // namespace talus

@@ -1,0 +1,242 @@
+// Building the world from the scene: materials, the smoothing kernel, the
+// bodies and their particles, the pipeline of stages and the writers. Every
+// setup check runs here, before anything is written.
+#include "simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "number_text.hpp"
+#include "plugin_registry.hpp"
+#include "talus/boundary.hpp"
+#include "talus/eos.hpp"
+#include "talus/error.hpp"
+#include "talus/geometry.hpp"
+#include "talus/hydrostatic.hpp"
+#include "talus/rheology.hpp"
+#include "talus/smoothing_kernel.hpp"
+#include "talus/stage.hpp"
+#include "talus/writer.hpp"
+#include "text.hpp"
+
+namespace talus {
+
+void Simulation::build_materials() {
+  const ParamValues& s = scene_.values;
+  if (!s.has("materials")) return;
+  const auto& names = s.keys("materials");
+  const auto& entries = s.objects("materials");
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    Material m;
+    m.name = names[i];
+    m.params = entries[i];
+    m.density = entries[i].real("density");
+    if (entries[i].has("eos")) {
+      auto eos = registry_.create_as<EquationOfState>("eos", entries[i].model_name("eos"), entries[i].model_params("eos"));
+      eos->set_reference_density(m.density);
+      m.eos = eos.get();
+      models_.push_back(std::move(eos));
+    }
+    if (entries[i].has("rheology")) {
+      auto r = registry_.create_as<Rheology>("rheology", entries[i].model_name("rheology"),
+                                             entries[i].model_params("rheology"));
+      m.rheology = r.get();
+      models_.push_back(std::move(r));
+    }
+    world_.materials.push_back(std::move(m));
+  }
+}
+
+void Simulation::build_kernel() {
+  const ParamValues& s = scene_.values;
+  double dp_fluid = 0.0, dp_any = 0.0;
+  for (const auto& b : s.objects("bodies")) {
+    if (!b.has("dp")) continue;
+    const double dp = b.real("dp");
+    dp_any = dp_any > 0 ? std::min(dp_any, dp) : dp;
+    if (b.string("kind") == "fluid") dp_fluid = dp_fluid > 0 ? std::min(dp_fluid, dp) : dp;
+  }
+  world_.dp = dp_fluid > 0 ? dp_fluid : dp_any;
+  if (!s.has("kernel")) return;
+  if (!(world_.dp > 0)) s.fail("kernel", "a smoothing kernel needs at least one fluid or wall body with a \"dp\"");
+  kernel_name_ = s.model_name("kernel");
+  const ParamValues& kp = s.model_params("kernel");
+  auto kernel = registry_.create_as<SmoothingKernel>("kernel", kernel_name_, kp);
+  world_.h = kp.real("h_over_dp") * world_.dp;
+  // The table scales by h^-(dim+2) (the Laplacian's normalisation): beyond a
+  // double's range it would hold zeros or infinities, or refuse h outright.
+  const double scale = std::pow(world_.h, world_.dim + 2);
+  if (!std::isnormal(scale) || !std::isfinite(1.0 / scale))
+    s.fail("kernel", "the smoothing length h = h_over_dp x dp = " + fixed(world_.h) + " m (dp = " + fixed(world_.dp) +
+                         " m) is beyond what a kernel table holds; use a dp between 1e-50 and 1e50 m");
+  world_.kernel = KernelTable(*kernel, world_.dim, world_.h);
+  models_.push_back(std::move(kernel));
+}
+
+// The SPH neighbour search (sph::NeighbourGrid) needs a periodic axis of at
+// least 2.5 kernel supports; checked once here, with the scene's pointer,
+// rather than deep in a stage's setup with neither. A writer that needs more
+// says so in its own check.
+void Simulation::check_periodic_axes() const {
+  const ParamValues& domain = scene_.values.object("domain");
+  const auto& axes = domain.strings("periodic");
+  for (std::size_t k = 0; k < axes.size(); ++k) {
+    auto fail = [&](const std::string& message) {
+      throw InputError("error: " + domain.file() + ": " + domain.pointer("periodic") + "/" + std::to_string(k) + ": " +
+                       message);
+    };
+    const int a = axes[k][0] - 'x';
+    if (a >= world_.dim) fail(axes[k] + " is not an axis of a " + std::to_string(world_.dim) + "D domain");
+    const double span = world_.hi[a] - world_.lo[a];
+    const double support = world_.h > 0.0 ? world_.kernel.support_radius() : 0.0;
+    if (support > 0.0 && !(span >= 2.5 * support))
+      fail("the domain spans " + fixed(span) + " m along " + axes[k] +
+           ", less than the 2.5 kernel supports a periodic axis needs (2.5 x " + fixed(support) +
+           " m); enlarge the domain along it or refine dp");
+  }
+}
+
+namespace {
+
+// "hydrostatic": true: the bodies that ask for it start with the pressure of
+// the fluid above them, every fluid body's weight included (talus/hydrostatic.hpp),
+// and the density their equation of state gives at that pressure.
+void start_hydrostatic(World& world, const std::vector<ParamValues>& bodies) {
+  std::vector<char> hydrostatic(bodies.size());
+  for (std::size_t b = 0; b < bodies.size(); ++b)
+    hydrostatic[b] = bodies[b].string("kind") == "fluid" && bodies[b].boolean("hydrostatic");
+  if (std::find(hydrostatic.begin(), hydrostatic.end(), 1) == hydrostatic.end()) return;
+  ParticleStore& fluid = world.fluid;
+  const auto body = fluid.body();
+  const auto material = fluid.material();
+  std::vector<double> spacing(fluid.size()), density(fluid.size());
+  for (std::size_t i = 0; i < fluid.size(); ++i) {
+    spacing[i] = world.bodies[body[i]].dp;
+    density[i] = world.materials[material[i]].density;
+  }
+  const std::vector<double> p = hydrostatic_pressure(fluid.position(), spacing, density, world.gravity, world.dim);
+  auto pressure = fluid.scalar("pressure");
+  auto rho = fluid.scalar("density");
+  for (std::size_t i = 0; i < fluid.size(); ++i) {
+    if (!hydrostatic[body[i]]) continue;
+    pressure[i] = p[i];
+    rho[i] = world.materials[material[i]].eos->density_at(p[i]);
+  }
+}
+
+}  // namespace
+
+void Simulation::build_bodies() {
+  const auto& bodies = scene_.values.objects("bodies");
+  ParticleStore& fluid = world_.fluid;
+  fluid.require({"velocity", FieldType::vector, "m/s", true, true});
+  fluid.require({"density", FieldType::scalar, "kg/m^3", true, true});
+  fluid.require({"pressure", FieldType::scalar, "Pa", true, true});
+  fluid.require({"mass", FieldType::scalar, "kg", true, true});
+
+  for (std::size_t bi = 0; bi < bodies.size(); ++bi) {
+    const ParamValues& v = bodies[bi];
+    Body body;
+    body.name = v.string("name");
+    body.params = v;
+    const std::string& kind = v.string("kind");
+    body.kind = kind == "fluid" ? BodyKind::fluid : (kind == "wall" ? BodyKind::wall : BodyKind::block);
+    if (v.has("material")) body.material = world_.find_material(v.string("material"));
+    if (v.has("dp")) body.dp = v.real("dp");
+    world_.bodies.push_back(std::move(body));
+  }
+
+  for (std::size_t bi = 0; bi < bodies.size(); ++bi) {
+    const ParamValues& v = bodies[bi];
+    Body& body = world_.bodies[bi];
+    if (body.kind == BodyKind::fluid) {
+      const Material& m = world_.materials[body.material];
+      const std::string& alt = v.alternative("shape");
+      const auto points = fill_points(alt, v.alternative_values("shape"), body.dp, world_.dim, world_.lo, world_.hi);
+      // A shape must lie in the domain: the run would drop what is outside.
+      auto outside = [&](const Vec3& q) {
+        for (int a = 0; a < world_.dim; ++a)
+          if (q[a] < world_.lo[a] || q[a] > world_.hi[a]) return true;
+        return false;
+      };
+      if (points.empty()) v.fail("shape", "the shape holds no particle at dp = " + text::number(body.dp));
+      if (const auto n_out = std::count_if(points.begin(), points.end(), outside))
+        v.fail("shape", "fluid '" + body.name + "': " + std::to_string(n_out) + " of " + std::to_string(points.size()) +
+                            " particles lie outside the domain " + vec_text(world_.lo, world_.dim) + " .. " +
+                            vec_text(world_.hi, world_.dim) + "; shrink the shape or enlarge the domain");
+      const std::size_t first = fluid.append(points.size());
+      auto x = fluid.position();
+      auto u = fluid.vector("velocity");
+      auto rho = fluid.scalar("density");
+      auto p = fluid.scalar("pressure");
+      auto mass = fluid.scalar("mass");
+      auto bid = fluid.body();
+      auto mid = fluid.material();
+      const Vec3 u0 = v.vector("velocity");
+      const double particle_mass = m.density * std::pow(body.dp, world_.dim);
+      if (v.boolean("hydrostatic") && !m.eos)
+        v.fail("hydrostatic", "needs the material '" + m.name + "' to have an \"eos\"");
+      for (std::size_t k = 0; k < points.size(); ++k) {
+        const std::size_t i = first + k;
+        x[i] = points[k];
+        u[i] = u0;
+        mass[i] = particle_mass;
+        bid[i] = static_cast<std::int32_t>(bi);
+        mid[i] = body.material;
+        p[i] = 0.0;
+        rho[i] = m.density;
+      }
+    }
+    if (v.has("boundary")) {  // walls, and blocks that the fluid sees
+      auto boundary = registry_.create_as<Boundary>("boundary", v.model_name("boundary"), v.model_params("boundary"));
+      body.boundary = boundary.get();
+      models_.push_back(std::move(boundary));
+    }
+    if (v.has("contact")) {
+      auto contact = registry_.create("contact", v.model_name("contact"), v.model_params("contact"));
+      body.contact = contact.get();
+      models_.push_back(std::move(contact));
+    }
+  }
+  start_hydrostatic(world_, bodies);
+  for (std::size_t bi = 0; bi < world_.bodies.size(); ++bi)
+    if (world_.bodies[bi].boundary) {
+      const int index = static_cast<int>(bi);
+      world_.bodies[bi].boundary->setup(world_, std::span<const int>(&index, 1));
+    }
+}
+
+void Simulation::build_stages() {
+  const ParamValues& s = scene_.values;
+  const auto& names = s.model_names("pipeline");
+  const auto& params = s.objects("pipeline");
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    stages_.push_back(registry_.create_as<Stage>("stage", names[i], params[i]));
+    stage_names_.push_back(names[i]);
+  }
+  for (auto& stage : stages_) stage->setup(world_);
+}
+
+void Simulation::build_writers() {
+  const ParamValues& s = scene_.values;
+  const auto& names = s.model_names("outputs");
+  const auto& params = s.objects("outputs");
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    ScheduledWriter w;
+    w.type = names[i];
+    w.writer = registry_.create_as<Writer>("writer", names[i], params[i]);
+    if (params[i].has("every") && params[i].has("every_steps"))
+      params[i].fail("every_steps", "give either \"every\" or \"every_steps\", not both");
+    if (params[i].has("every_steps"))
+      w.every_steps = static_cast<std::uint64_t>(params[i].integer("every_steps"));
+    else
+      w.every = params[i].has("every") ? params[i].real("every") : world_.end_time / 50.0;
+    w.writer->check(world_);
+    writers_.push_back(std::move(w));
+  }
+}
+
+}  // namespace talus
