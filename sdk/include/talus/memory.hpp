@@ -12,7 +12,8 @@
 namespace talus {
 
 // Bytes this process can allocate now: MemAvailable from /proc/meminfo (or
-// free pages from sysconf), capped by the cgroup's memory limit if it has one.
+// free pages from sysconf), capped by the cgroup's memory limit and by the
+// address-space limit (ulimit -v, less what the process already maps).
 TALUS_API std::uint64_t available_memory();
 
 // Whether require_memory refuses (default true; --allow-large sets false).
