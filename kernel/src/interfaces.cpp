@@ -10,6 +10,7 @@
 #include "talus/rheology.hpp"
 #include "talus/smoothing_kernel.hpp"
 #include "talus/sph/boundary_pass.hpp"
+#include "talus/sph/pair_term.hpp"
 #include "talus/stage.hpp"
 #include "talus/writer.hpp"
 
@@ -28,6 +29,7 @@ Writer::~Writer() = default;
 BlockSet::~BlockSet() = default;
 dda::ContactModel::~ContactModel() = default;
 sph::SphBoundary::~SphBoundary() = default;
+sph::PairTerm::~PairTerm() = default;
 
 void Rheology::apparent_viscosity(std::span<const Index>, const ViscosityInputs&, double*) const {
   throw RunError("this rheology model has no apparent viscosity (it is a basal-stress model only)");

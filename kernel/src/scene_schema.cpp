@@ -140,6 +140,9 @@ ParamSet make_scene() {
   s.object_map("materials", material_params()).optional().doc("materials by name");
   s.object_list("bodies", body_params()).doc("fluid bodies, walls and blocks");
   s.model_list("pipeline", "stage").key("stage").doc("solver stages, in the order they advance each step");
+  s.model_list("pair_terms", "pair_term")
+      .optional()
+      .doc("extra SPH pair terms (plugins) that the wcsph stage adds to its rates, each as its own pass, in order");
   s.object("time", time_params()).doc("the time loop");
   s.model_list("outputs", "writer", output_common()).optional().doc("writers and probes");
   s.object("checkpoint", checkpoint_params()).optional().doc("restart files");

@@ -18,6 +18,7 @@
 #include "talus/hydrostatic.hpp"
 #include "talus/rheology.hpp"
 #include "talus/smoothing_kernel.hpp"
+#include "talus/sph/pair_term.hpp"
 #include "talus/stage.hpp"
 #include "talus/writer.hpp"
 #include "text.hpp"
@@ -211,6 +212,13 @@ void Simulation::build_bodies() {
 
 void Simulation::build_stages() {
   const ParamValues& s = scene_.values;
+  const auto& term_names = s.model_names("pair_terms");
+  const auto& term_params = s.objects("pair_terms");
+  for (std::size_t i = 0; i < term_names.size(); ++i) {
+    auto term = registry_.create_as<sph::PairTerm>("pair_term", term_names[i], term_params[i]);
+    world_.pair_terms.push_back(term.get());
+    models_.push_back(std::move(term));
+  }
   const auto& names = s.model_names("pipeline");
   const auto& params = s.objects("pipeline");
   for (std::size_t i = 0; i < names.size(); ++i) {
@@ -218,6 +226,8 @@ void Simulation::build_stages() {
     stage_names_.push_back(names[i]);
   }
   for (auto& stage : stages_) stage->setup(world_);
+  if (!world_.pair_terms.empty() && !world_.pair_terms_run)
+    s.fail("pair_terms", "no stage of the pipeline runs pair terms; they act in a \"wcsph\" stage");
 }
 
 void Simulation::build_writers() {

@@ -134,6 +134,11 @@ void WcsphStage::compute_rates(World& world) {
   }
   pairs_total_ += fluid_pass(world);
   pairs_total_ += wall_passes(world);
+  if (!pair_terms_.empty()) {
+    const sph::FluidView view = fluid_view(world);
+    const sph::FluidRates rates{f.a, f.drho, f.visc};
+    for (sph::PairTerm* term : pair_terms_) pairs_total_ += term->add_rates({world, view, rates});
+  }
   if (point_implicit_) scale_stiff_particles(world);
   ++rate_evaluations_;
   rates_valid_ = true;

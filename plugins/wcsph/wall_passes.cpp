@@ -95,11 +95,17 @@ struct WallPass {
 
 }  // namespace
 
-std::uint64_t WcsphStage::wall_passes(World& world) {
+sph::FluidView WcsphStage::fluid_view(World& world) const {
   FluidFields f(world.fluid);
   sph::FluidView fluid{&cells_, f.x, f.v, f.rho, f.p, f.c, f.m, f.mat};
   fluid.inv_density = inv_rho_;
   if (per_particle_viscosity_) fluid.viscosity = world.fluid.scalar("mu_eff");
+  return fluid;
+}
+
+std::uint64_t WcsphStage::wall_passes(World& world) {
+  FluidFields f(world.fluid);
+  const sph::FluidView fluid = fluid_view(world);
   const sph::FluidRates rates{f.a, f.drho, f.visc};
   const ViscositySettings viscosity = viscosity_settings(world);
   const bool continuity = density_ == DensityMode::continuity;

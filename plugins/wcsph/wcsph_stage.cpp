@@ -194,6 +194,9 @@ void WcsphStage::setup(World& world) {
   settings_ = sph::FluidSettings{&world.kernel, density_ == DensityMode::summation, lo, hi,
                                  viscosity_ != ViscosityModel::artificial};
   period_ = periods(world);
+  pair_terms_ = world.pair_terms;
+  for (sph::PairTerm* term : pair_terms_) term->setup(world);
+  world.pair_terms_run = true;
   world.refresh_material_index();
   update_pressure(world);
   cells_.build(world.fluid.position());
@@ -240,6 +243,7 @@ double WcsphStage::stable_time_step(World& world) {
   if (nu_max > 0.0) dt = std::min(dt, h_ * h_ / nu_max);
   dt *= courant_;
   for (const sph::SphBoundary* wall : walls_) dt = std::min(dt, wall->stable_time_step(world));
+  for (const sph::PairTerm* term : pair_terms_) dt = std::min(dt, term->stable_time_step(world));
   return dt;
 }
 
@@ -339,6 +343,7 @@ StagePlan WcsphStage::plan(const World& world) const {
   if (point_implicit_) plan.notes.push_back("stiff_viscosity: point-implicit viscous inertia 1 + dt D_i per particle");
   plan.passes.push_back(force);
   for (const sph::SphBoundary* wall : walls_) wall->describe_passes(plan);
+  for (const sph::PairTerm* term : pair_terms_) plan.passes.push_back("pair term pass: " + term->pass_description());
   const char* integ = integrator_ == Integrator::symplectic            ? "symplectic (2 evaluations per step)"
                       : integrator_ == Integrator::verlet              ? "Verlet (1 evaluation per step)"
                       : integrator_ == Integrator::predictor_corrector ? "predictor-corrector (2 evaluations per step)"

@@ -14,7 +14,8 @@
 // Integrators: symplectic (DualSPHysics, default), Verlet with a corrective
 // step every N (DualSPHysics), predictor-corrector (Monaghan 1989; the seed's),
 // explicit Euler (rock-fluid seed eqs. 20-21).
-// Walls are separate passes: sph::SphBoundary models (boundary_pass.hpp).
+// Walls are separate passes over the wall sets of sph::SphBoundary models
+// (boundary_pass.hpp); the scene's extra pair terms run after them (pair_term.hpp).
 #pragma once
 
 #include <cstdint>
@@ -23,6 +24,7 @@
 #include "talus/sph/neighbour_grid.hpp"
 #include "talus/sph/boundary_pass.hpp"
 #include "talus/sph/fluid_terms.hpp"
+#include "talus/sph/pair_term.hpp"
 #include "talus/stage.hpp"
 #include "viscosity_term.hpp"
 
@@ -80,6 +82,8 @@ class WcsphStage final : public Stage {
   std::uint64_t wall_passes(World& world);
   // Summation density: the wall sets' share sum_b m_b W_ib of rho_i.
   std::uint64_t wall_density_passes(World& world);
+  // The fluid as the wall models and pair terms see it, for this evaluation.
+  sph::FluidView fluid_view(World& world) const;
   void density_summation(World& world);
   bool rates_current(const World& world) const;
   void step_euler(World& world, double dt);
@@ -112,6 +116,7 @@ class WcsphStage final : public Stage {
   double bulk_viscous_support_ = 0.0;    // sum_j V_j |x_ij.grad W|/(r^2+eta^2) of a full lattice support, 1/m^2
   std::vector<double> visc_support_, inertia_;  // scratch (point_implicit), refilled every evaluation (grow only)
   std::vector<sph::SphBoundary*> walls_;
+  std::vector<sph::PairTerm*> pair_terms_;  // the scene's extra terms (sph/pair_term.hpp), in order
   sph::FluidSettings settings_;
   sph::NeighbourGrid cells_;
   Vec3 period_;  // domain length on periodic axes (lever arms of rigid-body wall sets)

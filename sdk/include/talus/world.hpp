@@ -23,6 +23,9 @@ class Rheology;
 class Boundary;
 class BlockSet;
 class Model;
+namespace sph {
+class PairTerm;
+}
 
 enum class BodyKind { fluid, wall, block };
 TALUS_API const char* to_string(BodyKind kind);
@@ -69,6 +72,10 @@ class TALUS_API World {
 
   std::vector<Material> materials;
   std::vector<Body> bodies;
+  // The scene's "pair_terms", owned by the host; the stage that runs them
+  // sets pair_terms_run (a scene whose pipeline runs none is refused).
+  std::vector<sph::PairTerm*> pair_terms;
+  bool pair_terms_run = false;
 
   double time = 0.0;
   std::uint64_t step = 0;
