@@ -234,6 +234,11 @@ void DynamicParticles::begin_step(World& world) {
   std::ranges::copy(w.rho, w.rho_n.begin());
 }
 
+void DynamicParticles::refresh_wall_sets(World& world) {
+  if (moves_) cells_.build(world.boundary.position().subspan(first_, count_));  // a restart loads the positions
+  refresh_set(world);
+}
+
 std::uint64_t DynamicParticles::fill_wall_state(World& world, const sph::FluidView& fluid) {
   WallFields w(world.boundary, first_, count_);
   if (moves_) cells_.build(w.x);  // also right after a restart, which loads the positions
@@ -282,7 +287,6 @@ void DynamicParticles::advance_walls(World& world, double time, double dt) {
       w.x[b] = wrap_periodic(world, motion.position(w.x0[b], time));
       w.v[b] = motion.velocity(w.x0[b], time);
     }
-    cells_.build(w.x);  // the wall set is current for the next pass (summation density runs before fill_wall_state)
   }
   update_pressure(world);
 }

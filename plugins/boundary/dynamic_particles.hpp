@@ -47,6 +47,7 @@ class DynamicParticles final : public sph::SphBoundary {
   void bind(World& world, const sph::FluidSettings& settings) override;
   void begin_step(World& world) override;
   std::uint64_t fill_wall_state(World& world, const sph::FluidView& fluid) override;
+  void refresh_wall_sets(World& world) override;
   std::span<const sph::WallSet> wall_sets() const override {
     return count_ > 0 ? std::span<const sph::WallSet>(&set_, 1) : std::span<const sph::WallSet>();
   }

@@ -36,6 +36,7 @@ class BlockParticles final : public sph::SphBoundary {
   void bind(World& world, const sph::FluidSettings& settings) override;
   void begin_step(World& world) override;
   std::uint64_t fill_wall_state(World& world, const sph::FluidView& fluid) override;
+  void refresh_wall_sets(World& world) override { refresh_sets(world); }
   std::span<const sph::WallSet> wall_sets() const override { return sets_; }
   void take_reaction(World& world, std::size_t set, const Vec3& force, const Vec3& torque) override;
   void advance_walls(World& world, double time, double dt) override;

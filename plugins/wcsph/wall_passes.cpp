@@ -137,13 +137,15 @@ std::uint64_t WcsphStage::wall_density_passes(World& world) {
   FluidFields f(world.fluid);
   const std::span<const Vec3> x = f.x;
   std::uint64_t pairs = 0;
-  for (const sph::SphBoundary* wall : walls_)
+  for (sph::SphBoundary* wall : walls_) {
+    wall->refresh_wall_sets(world);
     for (const sph::WallSet& set : wall->wall_sets()) {
       auto start = [](Index) { return sph::DensitySums{}; };
       auto finish = [&](Index i, const sph::DensitySums& sum) { f.rho[i] += sum.rho_sum; };
       pairs += sph::pair_pass(x.size(), x, *set.cells, set.position, world.kernel, sph::other_set, start, finish,
                               sph::DensitySum{set.fields.mass});
     }
+  }
   return pairs;
 }
 

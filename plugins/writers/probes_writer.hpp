@@ -80,6 +80,8 @@ class ProbesWriter final : public Writer {
   // The fields the wall force reads, looked up once per row.
   struct ForceFields {
     explicit ForceFields(const World& world);
+    ForceFields(const ForceFields&) = delete;  // `fluid` points into `inv_rho`
+    ForceFields& operator=(const ForceFields&) = delete;
     std::span<const Vec3> xa;
     std::span<const double> ma, rhoa, pa;
     std::vector<double> inv_rho;  // 1/rho of the fluid particles

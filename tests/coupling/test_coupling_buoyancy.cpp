@@ -96,3 +96,27 @@ TEST(CouplingBuoyancy, FixedBlockFeelsRhoGV) {
   // face (2 x 0.1 dp / 0.1 m); measured -2.8 %. tools/verification/cases/buoyancy_fixed_2d.py says more.
   EXPECT_NEAR(measured, expected, 0.04 * expected);
 }
+
+// Summation density with a wall listed before a block: the block's particles
+// are added to the wall store when the fluid stage binds, after the wall's set
+// was first taken, and summation density reads the sets before any other pass.
+// The water over the tank floor must see the floor's share of rho_i.
+TEST(CouplingBuoyancy, SummationDensitySeesTheWallsBesideABlock) {
+  json scene = read_scene("buoyancy_fixed_2d.json");
+  scene["pipeline"][1]["density"] = "summation";
+  scene["time"]["end"] = 0.01;
+  scene.erase("outputs");
+  CoupledRun run(scene, "buoyancy_summation");
+  ASSERT_EQ(run.run(), 0);
+  const talus::World& w = run.world();
+  const auto x = w.fluid.position();
+  const auto rho = w.fluid.scalar("density");
+  std::size_t bottom = 0, low = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (x[i].z > 2.0 * w.dp) continue;  // the two rows over the floor (z = 0)
+    ++bottom;
+    if (rho[i] < 0.95 * 1000.0) ++low;
+  }
+  EXPECT_GT(bottom, 0u);
+  EXPECT_EQ(low, 0u) << low << " of " << bottom << " particles over the floor lack the floor's density share";
+}

@@ -20,7 +20,8 @@
 //   advance_walls(world, t, dt)         wall state at time t = t^n + dt from the
 //                                       state saved by begin_step and the last rates
 // With summation density the stage adds sum_b m_b W_ib over every wall set to
-// rho_i before the force pass (the sets as left by the last advance_walls).
+// rho_i before the force pass, after refresh_wall_sets (the first evaluation
+// after bind or a restart comes before any fill_wall_state).
 #pragma once
 
 #include <cstdint>
@@ -48,7 +49,7 @@ struct FluidSettings {
   bool summation_density = false;
   Vec3 lo, hi;  // bounds the fluid's neighbour grid covers
   // True when a pair term reads WallSet::viscous_velocity (laminar and
-  // Laplacian viscosity); a model may then skip computing it.
+  // Laplacian viscosity); when false a model may skip computing it.
   bool viscous_velocity = false;
 };
 
@@ -82,7 +83,7 @@ struct FluidRates {
 // (force, and torque about `centre`) and handed back by take_reaction.
 struct RigidBodyFrame {
   Vec3 centre;  // the body's centroid
-  Vec3 lo, hi;  // bounding box of its wall particles; fluid farther than the kernel support is skipped
+  Vec3 lo, hi;  // a box holding the body (its wall particles inside); fluid farther than the kernel support is skipped
 };
 
 // One set of wall particles as the fluid's pair terms see it.
@@ -111,7 +112,11 @@ class TALUS_API SphBoundary : public Boundary {
   // Wall-side passes at the current positions (the walls' own density rates,
   // the viscous velocity); returns the pair evaluations.
   virtual std::uint64_t fill_wall_state(World& /*world*/, const FluidView& /*fluid*/) { return 0; }
-  // The model's wall sets, valid from fill_wall_state (or advance_walls) to the next advance_walls.
+  // Points the wall sets at the store's current arrays and rebuilds their
+  // grids at the current positions (other models may have grown the store,
+  // a restart loads the positions); fill_wall_state does this too.
+  virtual void refresh_wall_sets(World& /*world*/) {}
+  // The model's wall sets, valid from refresh_wall_sets or fill_wall_state to the next advance_walls.
   virtual std::span<const WallSet> wall_sets() const { return {}; }
   // The fluid's force and torque on the rigid body of wall set `set`, summed by the stage's pass.
   virtual void take_reaction(World& /*world*/, std::size_t /*set*/, const Vec3& /*force*/, const Vec3& /*torque*/) {}
