@@ -69,6 +69,7 @@ class TALUS_API Simulation {
   void check_periodic_axes() const;
   void build_bodies();
   void build_stages();
+  void check_stage_parts() const;  // the pipeline order against the stages' StageParts
   void build_writers();
   void remove_escaped_particles();
   void resort_particles();

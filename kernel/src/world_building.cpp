@@ -225,9 +225,37 @@ void Simulation::build_stages() {
     stages_.push_back(registry_.create_as<Stage>("stage", names[i], params[i]));
     stage_names_.push_back(names[i]);
   }
+  check_stage_parts();
   for (auto& stage : stages_) stage->setup(world_);
   if (!world_.pair_terms.empty() && !world_.pair_terms_run)
     s.fail("pair_terms", "no stage of the pipeline runs pair terms; they act in a \"wcsph\" stage");
+}
+
+// Every part a stage needs is built by a stage before it, and no part twice.
+void Simulation::check_stage_parts() const {
+  const auto& entries = scene_.values.objects("pipeline");
+  std::vector<StageParts> parts;
+  for (const auto& stage : stages_) parts.push_back(stage->parts(world_));
+  auto builder = [&](const std::string& part, std::size_t from, std::size_t to) {
+    for (std::size_t j = from; j < to; ++j)
+      if (std::ranges::find(parts[j].provides, part) != parts[j].provides.end()) return j;
+    return to;
+  };
+  auto where = [&](std::size_t j) { return "stage '" + stage_names_[j] + "' (/pipeline/" + std::to_string(j) + ")"; };
+  for (std::size_t i = 0; i < stages_.size(); ++i) {
+    for (const std::string& part : parts[i].needs) {
+      if (builder(part, 0, i) < i) continue;
+      const std::size_t later = builder(part, i + 1, stages_.size());
+      if (later < stages_.size())
+        entries[i].fail("", "stage '" + stage_names_[i] + "' needs the " + part + " that " + where(later) +
+                                " builds; list that stage before it");
+      entries[i].fail("", "stage '" + stage_names_[i] + "' needs " + part + ", which no stage of the pipeline builds");
+    }
+    for (const std::string& part : parts[i].provides)
+      if (const std::size_t earlier = builder(part, 0, i); earlier < i)
+        entries[i].fail("", "stage '" + stage_names_[i] + "' builds the " + part + " that " + where(earlier) +
+                                " already builds; list only one of them");
+  }
 }
 
 void Simulation::build_writers() {

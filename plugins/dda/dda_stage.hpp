@@ -40,6 +40,7 @@ class DdaStage final : public Stage {
   explicit DdaStage(const ParamValues& v);
 
   void setup(World& world) override;
+  StageParts parts(const World&) const override { return {{"blocks"}, {}}; }
   double stable_time_step(World& world) override;
   void advance(World& world, double dt) override;
   StagePlan plan(const World& world) const override;

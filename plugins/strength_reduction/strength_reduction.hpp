@@ -39,6 +39,7 @@ class StrengthReduction final : public Stage {
   explicit StrengthReduction(const ParamValues& v);
 
   void setup(World& world) override;
+  StageParts parts(const World&) const override { return {{"blocks"}, {}}; }  // its own DDA
   double stable_time_step(World& world) override;
   void advance(World& world, double dt) override;
   StagePlan plan(const World& world) const override;

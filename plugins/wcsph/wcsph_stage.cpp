@@ -212,6 +212,12 @@ void WcsphStage::setup(World& world) {
   worst_deviation_time_ = world.time;
 }
 
+StageParts WcsphStage::parts(const World& world) const {
+  for (const Body& body : world.bodies)
+    if (body.kind == BodyKind::block && body.boundary) return {{}, {"blocks"}};
+  return {};
+}
+
 ViscositySettings WcsphStage::viscosity_settings(const World& world) const {
   return {viscosity_,           alpha_ * h_,     material_mu_.data(), sph::laminar_eta2(h_),
           per_particle_viscosity_, viscosity_mean_, &world.kernel};

@@ -45,6 +45,8 @@ class WcsphStage final : public Stage {
   explicit WcsphStage(const ParamValues& v);
 
   void setup(World& world) override;
+  // Blocks, when a block body has a boundary model (the fluid sees it).
+  StageParts parts(const World& world) const override;
   double stable_time_step(World& world) override;
   void advance(World& world, double dt) override;
   StagePlan plan(const World& world) const override;

@@ -72,8 +72,20 @@ TEST(CouplingMomentum, FluidStageBeforeDdaIsAnInputErrorNamingThePipeline) {
     FAIL() << "expected an InputError";
   } catch (const talus::InputError& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find("/pipeline"), std::string::npos) << what;
-    EXPECT_NE(what.find("before"), std::string::npos) << what;
+    // Refused by the host from the stages' declared parts, before any stage sets up.
+    EXPECT_NE(what.find("/pipeline/0: stage 'wcsph' needs the blocks that stage 'dda' (/pipeline/1) builds"),
+              std::string::npos)
+        << what;
+  }
+  scene["pipeline"] = json::parse(R"([ { "stage": "wcsph" } ])");
+  try {
+    CoupledRun run(scene, "momentum_no_dda");
+    FAIL() << "expected an InputError";
+  } catch (const talus::InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("/pipeline/0: stage 'wcsph' needs blocks, which no stage of the pipeline builds"),
+              std::string::npos)
+        << what;
   }
 }
 

@@ -59,7 +59,7 @@ TEST(StrengthReductionInput, SlopesThatCannotBeReducedAreRefused) {
   expect_refused(s, "overlap", "/bodies/1/shape", "overlap by");
   s = planar_slide({});
   s["pipeline"].push_back({{"stage", "dda"}});
-  expect_refused(s, "with_dda", "/pipeline/", "list only one");
+  expect_refused(s, "with_dda", "/pipeline/1: stage 'dda' builds the blocks that stage 'strength_reduction'", "list only one");
   s = planar_slide({});
   s["gravity"] = {0.0, 0.0, 0.0};
   expect_refused(s, "no_gravity", "/pipeline/0", "no gravity");

@@ -22,9 +22,21 @@ struct StagePlan {
   std::vector<std::string> notes;
 };
 
+// The world parts a stage builds for the stages after it and those it needs
+// from the stages before it, by name ("blocks": the DDA block set,
+// World::blocks). The host checks the pipeline against them before any stage
+// sets up, and refuses an order that cannot work with the stage to list first.
+struct StageParts {
+  std::vector<std::string> provides;
+  std::vector<std::string> needs;
+};
+
 class TALUS_API Stage : public Model {
  public:
   ~Stage() override;
+
+  // Called after construction, before setup: the bodies and materials exist.
+  virtual StageParts parts(const World& /*world*/) const { return {}; }
 
   // Registers fields, checks the bodies and materials it handles (throwing
   // InputError with the JSON pointer on a semantic problem), allocates.
