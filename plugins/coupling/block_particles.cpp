@@ -314,8 +314,7 @@ void BlockParticles::advance_walls(World& world, double time, double dt) {
     rho[p] = std::max(rho0, rho_n[p] + dt * drho[p]);  // as DBC walls: never pull the fluid
   }
   // The dda stage has already moved the blocks to the end of this host step.
-  place(world);
-  refresh_sets(world);
+  place(world);  // the grids follow in refresh_wall_sets or fill_wall_state, before any pass reads them
   update_pressure(world);
   ledger_.commit(world, blocks_, time, dt);
 }

@@ -64,29 +64,23 @@ TEST(CouplingMomentum, BlockParticlesActionEqualsReaction) { check_exchange("blo
 
 TEST(CouplingMomentum, RepulsionActionEqualsReaction) { check_exchange("block_repulsion"); }
 
+// Refused by the host from the stages' declared parts, before any stage sets up.
 TEST(CouplingMomentum, FluidStageBeforeDdaIsAnInputErrorNamingThePipeline) {
-  json scene = blob_scene("block_particles");
-  scene["pipeline"] = json::parse(R"([ { "stage": "wcsph" }, { "stage": "dda", "subcycle": true } ])");
-  try {
-    CoupledRun run(scene, "momentum_order");
-    FAIL() << "expected an InputError";
-  } catch (const talus::InputError& e) {
-    const std::string what = e.what();
-    // Refused by the host from the stages' declared parts, before any stage sets up.
-    EXPECT_NE(what.find("/pipeline/0: stage 'wcsph' needs the blocks that stage 'dda' (/pipeline/1) builds"),
-              std::string::npos)
-        << what;
-  }
-  scene["pipeline"] = json::parse(R"([ { "stage": "wcsph" } ])");
-  try {
-    CoupledRun run(scene, "momentum_no_dda");
-    FAIL() << "expected an InputError";
-  } catch (const talus::InputError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("/pipeline/0: stage 'wcsph' needs blocks, which no stage of the pipeline builds"),
-              std::string::npos)
-        << what;
-  }
+  auto expect_refused = [](const char* pipeline, const std::string& name, const std::string& words) {
+    json scene = blob_scene("block_particles");
+    scene["pipeline"] = json::parse(pipeline);
+    try {
+      CoupledRun run(scene, name);
+      ADD_FAILURE() << name << ": expected an InputError";
+    } catch (const talus::InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(words), std::string::npos) << what;
+    }
+  };
+  expect_refused(R"([ { "stage": "wcsph" }, { "stage": "dda", "subcycle": true } ])", "momentum_order",
+                 "/pipeline/0: stage 'wcsph' needs the blocks that stage 'dda' (/pipeline/1) builds");
+  expect_refused(R"([ { "stage": "wcsph" } ])", "momentum_no_dda",
+                 "/pipeline/0: stage 'wcsph' needs blocks, which no stage of the pipeline builds");
 }
 
 namespace {
