@@ -22,7 +22,7 @@ namespace {
 // rounded up: an estimate that errs on the high side.
 constexpr double bytes_per_particle = 600.0;
 
-// A neighbour grid keeps two 4-byte offsets per cell (talus/sph/neighbour_grid.hpp),
+// A neighbour grid keeps two 4-byte offsets per cell (talus/neighbour_grid.hpp),
 // with cells of half the search radius; the fluid, the walls, each block seen
 // by the fluid and the periodic re-sort each keep one over the domain.
 constexpr double bytes_per_cell = 2.0 * 4.0;

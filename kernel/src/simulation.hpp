@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "scene.hpp"
-#include "talus/cell_list.hpp"
+#include "talus/neighbour_grid.hpp"
 #include "talus/world.hpp"
 
 namespace talus {
@@ -89,7 +89,7 @@ class TALUS_API Simulation {
   double last_output_time_ = -1.0;
   std::string output_directory_;
   std::vector<std::uint8_t> escaped_;  // scratch, reused
-  CellList resort_cells_;              // reused by every re-sort: no allocation once sized
+  NeighbourGrid resort_cells_;         // reused by every re-sort: no allocation once sized
 };
 
 }  // namespace talus

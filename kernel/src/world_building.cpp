@@ -77,10 +77,11 @@ void Simulation::build_kernel() {
   models_.push_back(std::move(kernel));
 }
 
-// The SPH neighbour search (sph::NeighbourGrid) needs a periodic axis of at
-// least 2.5 kernel supports; checked once here, with the scene's pointer,
-// rather than deep in a stage's setup with neither. A writer that needs more
-// says so in its own check.
+// A periodic axis must span at least 2.5 kernel supports. The neighbour grid
+// reports every image on any period, but the SPH stages and wall models are
+// verified only where a particle meets one image of each neighbour, so a
+// narrower axis is refused rather than run unverified; checked once here,
+// with the scene's pointer.
 void Simulation::check_periodic_axes() const {
   const ParamValues& domain = scene_.values.object("domain");
   const auto& axes = domain.strings("periodic");

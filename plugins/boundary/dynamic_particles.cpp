@@ -204,7 +204,7 @@ void DynamicParticles::initial_density(World& world) {
   const auto fp = fs.scalar("pressure");
   const auto frho = fs.scalar("density");
   const KernelTable& k = *settings_.kernel;
-  sph::NeighbourGrid fluid_cells;
+  NeighbourGrid fluid_cells;
   fluid_cells.configure(world.dim, settings_.lo, settings_.hi, k.support_radius(), world.periodic);
   fluid_cells.build(fx);
   const Vec3 g = world.gravity;
@@ -216,7 +216,7 @@ void DynamicParticles::initial_density(World& world) {
     const double pb = std::max(0.0, s.psum / s.wsum);
     w.rho[i] = std::max(mat.density, mat.eos->density_at(pb));
   };
-  sph::pair_pass(count_, wx, fluid_cells, fx, k, sph::other_set, start, finish,
+  sph::pair_pass(count_, wx, fluid_cells, k, sph::other_set, start, finish,
                  sph::PressureExtrapolation{fp.data(), frho.data(), g});
 }
 
@@ -261,10 +261,10 @@ std::uint64_t DynamicParticles::fill_wall_state(World& world, const sph::FluidVi
   std::uint64_t pairs = 0;
   if (mirror_) {
     if (noslip_v_.size() != count_) noslip_v_.resize(count_);
-    pairs = sph::pair_pass(count_, wx, *fluid.cells, fluid.position, kernel, sph::other_set, start, finish_mirror,
+    pairs = sph::pair_pass(count_, wx, *fluid.cells, kernel, sph::other_set, start, finish_mirror,
                            continuity, VelocityShepard{fluid.velocity.data()});
   } else {
-    pairs = sph::pair_pass(count_, wx, *fluid.cells, fluid.position, kernel, sph::other_set, start, finish,
+    pairs = sph::pair_pass(count_, wx, *fluid.cells, kernel, sph::other_set, start, finish,
                            continuity);
   }
   refresh_set(world);

@@ -31,7 +31,7 @@
 
 #include <vector>
 
-#include "talus/sph/neighbour_grid.hpp"
+#include "talus/neighbour_grid.hpp"
 #include "talus/motion.hpp"
 #include "talus/sph/boundary_pass.hpp"
 
@@ -71,7 +71,7 @@ class DynamicParticles final : public sph::SphBoundary {
   std::vector<int> slot_of_body_;              // world body index -> slot (-1: not mine)
   bool moves_ = false;
   sph::FluidSettings settings_;
-  sph::NeighbourGrid cells_;
+  NeighbourGrid cells_;
   std::vector<double> inv_rho_;  // 1/rho of my wall particles, refreshed by every fill_wall_state()
   NoSlip no_slip_ = NoSlip::extrapolated;
   bool mirror_ = false;           // no_slip extrapolated and a viscous term that uses it (laminar, Laplacian)

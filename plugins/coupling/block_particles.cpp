@@ -176,7 +176,7 @@ void BlockParticles::bind(World& world, const sph::FluidSettings& settings) {
     begin_.push_back(first);
     end_.push_back(first + points.size());
   }
-  cells_.assign(blocks_.size(), sph::NeighbourGrid{});
+  cells_.assign(blocks_.size(), NeighbourGrid{});
   for (auto& c : cells_) c.configure(world.dim, settings.lo, settings.hi, radius, world.periodic);
   inv_rho_.assign(s.size(), 0.0);  // indexed like world.boundary (only my range is used)
   ledger_.reset(blocks_.size());
@@ -211,7 +211,7 @@ void BlockParticles::initial_density(World& world) {
   ParticleStore& s = world.boundary;
   const auto fx = fs.position();
   const KernelTable& k = *settings_.kernel;
-  sph::NeighbourGrid fluid_cells;
+  NeighbourGrid fluid_cells;
   fluid_cells.configure(world.dim, settings_.lo, settings_.hi, k.support_radius(), world.periodic);
   fluid_cells.build(fx);
   const Material& mat = world.materials[material_];
@@ -224,7 +224,7 @@ void BlockParticles::initial_density(World& world) {
       if (sum.wsum <= 0.0) return;
       rho[first + b] = std::max(rho0_, mat.eos->density_at(std::max(0.0, sum.psum / sum.wsum)));
     };
-    sph::pair_pass(count, x.subspan(first, count), fluid_cells, fx, k, sph::other_set, start, finish,
+    sph::pair_pass(count, x.subspan(first, count), fluid_cells, k, sph::other_set, start, finish,
                    sph::PressureExtrapolation{fs.scalar("pressure").data(), fs.scalar("density").data(), world.gravity});
   }
 }
@@ -290,7 +290,7 @@ std::uint64_t BlockParticles::fill_wall_state(World& world, const sph::FluidView
     for (std::size_t q = 0; q < count; ++q) inv_rho_[first + q] = 1.0 / rho[first + q];
     auto start = [&](Index q) { return WallSums{v[first + q], rho[first + q], 0.0}; };
     auto finish = [&](Index q, const WallSums& sum) { drho[first + q] = sum.drho; };
-    pairs += sph::pair_pass(count, sets_[k].position, *fluid.cells, fluid.position, kernel, sph::other_set, start,
+    pairs += sph::pair_pass(count, sets_[k].position, *fluid.cells, kernel, sph::other_set, start,
                             finish, continuity);
   }
   return pairs;

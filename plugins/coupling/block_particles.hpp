@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "block_link.hpp"
-#include "talus/sph/neighbour_grid.hpp"
+#include "talus/neighbour_grid.hpp"
 #include "talus/sph/boundary_pass.hpp"
 
 namespace talus::coupling {
@@ -73,7 +73,7 @@ class BlockParticles final : public sph::SphBoundary {
   std::size_t removed_ = 0;
   std::size_t fitted_ = 0;  // fluid particles moved onto the faces at the start (fluid_fit.hpp)
   sph::FluidSettings settings_;
-  std::vector<sph::NeighbourGrid> cells_;  // per block
+  std::vector<NeighbourGrid> cells_;  // per block
   std::vector<sph::WallSet> sets_;         // per block
   std::vector<double> inv_rho_;            // 1/rho of my particles, refreshed by every fill_wall_state()
   ImpulseLedger ledger_;

@@ -127,7 +127,7 @@ void DepthIntegratedSph::setup(World& world) {
   notes_ = {"terrain: " + terrain_->summary(), "gravity " + format("%.4g", g_) + " m/s^2 along -Z"};
   // Level 0 holds l <= sqrt(2) h: particles at the scene's h (the start, a
   // uniform layer) sit mid-level, not astride a level boundary.
-  grid_.configure(world.lo, world.hi, world.periodic, kernel_.support * world.h * std::sqrt(2.0));
+  grid_.configure(2, world.lo, world.hi, kernel_.support * world.h * std::sqrt(2.0), world.periodic);
 
   ParticleStore& s = world.fluid;
   s.require({"velocity", FieldType::vector, "m/s", true, true});
@@ -314,7 +314,7 @@ void DepthIntegratedSph::sum_depth(World& world) {
   for (std::size_t i = 0; i < n; ++i) {
     const double li = ell[i];
     double sum = 0.0, moment = 0.0;
-    grid_.for_each_neighbour(pos[i], pos, sup * li, false, [&](Index j, const Vec3&, double r2) {
+    grid_.for_each_neighbour(pos[i], sup * li, [&](Index j, const Vec3&, double r2) {
       const double r = std::sqrt(r2);
       sum += vol[j] * kern.w(r, li);
       moment += vol[j] * r2 * kern.dw_over_r(r, li);
@@ -400,7 +400,7 @@ void DepthIntegratedSph::advance(World& world, double dt) {
   for (std::size_t i = 0; i < n; ++i) {
     const double li = ell[i], ci2 = cos_[i] * cos_[i];
     Vec3 a{};
-    grid_.for_each_neighbour(pos[i], pos, sup * li, true, [&](Index j, const Vec3& dx, double r2) {
+    grid_.for_each_candidate_pair(pos[i], sup * li, [&](Index j, const Vec3& dx, double r2) {
       const double r = std::sqrt(r2);
       const double lj = ell[j];
       if (r >= sup * std::max(li, lj)) return;

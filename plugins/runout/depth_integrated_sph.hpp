@@ -54,8 +54,9 @@
 //   time      pressure kick, gravity kick-drift-kick (second order along curved
 //             terrain), the drift scaled to cover dt |u| of surface,
 //             dt = cfl l / (sqrt(g h) + |v|).
-//   neighbours LevelGrid: particles binned by smoothing length, so the few
-//             large-l particles of a thin front do not set every cell's size.
+//   neighbours talus::NeighbourGrid with per-particle radii: particles binned
+//             by smoothing length, so the few large-l particles of a thin
+//             front do not set every cell's size.
 // On an inclined plane this reduces exactly to the Savage-Hutter equations
 // in slope coordinates that Mangeney et al. (2000) solve.
 #pragma once
@@ -65,9 +66,9 @@
 #include <string>
 #include <vector>
 
+#include "talus/neighbour_grid.hpp"
 #include "talus/rheology.hpp"
 #include "talus/stage.hpp"
-#include "level_grid.hpp"
 #include "rasters.hpp"
 #include "terrain.hpp"
 #include "variable_kernel.hpp"
@@ -110,7 +111,7 @@ class DepthIntegratedSph final : public Stage {
   ParamValues params_;
   std::unique_ptr<Terrain> terrain_;
   VariableKernel kernel_;
-  LevelGrid grid_;  // neighbour search binned by smoothing length
+  NeighbourGrid grid_;  // binned by smoothing length
   RunoutRasters rasters_;
   double g_ = 9.81, cfl_ = 0.2, kappa_ = 1.3, l_min_ = 0.0, l_max_ = 0.0, threshold_ = 0.01;
   double max_accel_ = 0.0, runout_ = 0.0;

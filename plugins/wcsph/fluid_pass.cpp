@@ -21,7 +21,7 @@ namespace {
 struct PassContext {
   World& world;
   FluidFields& f;
-  const sph::NeighbourGrid& cells;
+  const NeighbourGrid& cells;
   const double* mu;  // per material
   Vec3 gravity;
   sph::Neighbours nb;  // the fluid's fields, with 1/rho and rho/c^2
@@ -50,7 +50,7 @@ std::uint64_t run_force_pass(const PassContext& ctx, const Terms&... terms) {
     f.visc[i] = s.visc;
   };
   const std::span<const Vec3> x = f.x;
-  return sph::pair_pass(x.size(), x, ctx.cells, x, ctx.world.kernel, sph::same_set, start, finish, terms...);
+  return sph::pair_pass(x.size(), x, ctx.cells, ctx.world.kernel, sph::same_set, start, finish, terms...);
 }
 
 template <class... Terms>
@@ -109,7 +109,7 @@ void WcsphStage::density_summation(World& world) {
   auto start = [](Index) { return Sums{}; };
   auto finish = [&](Index i, const Sums& s) { f.rho[i] = s.rho_sum + m[i] * w0; };  // self term W(0)
   const std::span<const Vec3> x = f.x;
-  pairs_total_ += sph::pair_pass(x.size(), x, cells_, x, world.kernel, sph::same_set, start, finish,
+  pairs_total_ += sph::pair_pass(x.size(), x, cells_, world.kernel, sph::same_set, start, finish,
                                  sph::DensitySum{m.data()});
   pairs_total_ += wall_density_passes(world);
 }

@@ -106,11 +106,11 @@ std::uint64_t WcsphStage::strain_rate_pass(World& world) {
       shear[i] = sph::shear_rate_from_gradient(s.g, s.l, dim);
       support[i] = s.support;
     };
-    return sph::pair_pass(x.size(), x, cells_, x, world.kernel, sph::same_set, start, finish,
+    return sph::pair_pass(x.size(), x, cells_, world.kernel, sph::same_set, start, finish,
                           sph::VelocityGradient{nb}, ViscousSupport{nb, sph::laminar_eta2(h_)});
   }
   auto finish = [&](Index i, const StrainSums& s) { shear[i] = sph::shear_rate_from_gradient(s.g, s.l, dim); };
-  return sph::pair_pass(x.size(), x, cells_, x, world.kernel, sph::same_set, start, finish,
+  return sph::pair_pass(x.size(), x, cells_, world.kernel, sph::same_set, start, finish,
                         sph::VelocityGradient{nb});
 }
 

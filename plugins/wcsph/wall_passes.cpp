@@ -65,7 +65,7 @@ struct WallPass {
   std::uint64_t against_walls(const Terms&... terms) const {
     auto first = [&](Index i) { return start<FluidSums>(i); };
     auto finish = [&](Index i, const FluidSums& s) { add_rates(i, s); };
-    return sph::pair_pass(fluid.position.size(), fluid.position, *set.cells, set.position, kernel, sph::other_set,
+    return sph::pair_pass(fluid.position.size(), fluid.position, *set.cells, kernel, sph::other_set,
                           first, finish, terms...);
   }
 
@@ -87,8 +87,8 @@ struct WallPass {
       on_body.force += force;
       on_body.torque += cross(arm_of(i), force) + s.moment * mi;
     };
-    return sph::reducing_pair_pass<BodyReaction>(fluid.position.size(), fluid.position, *set.cells, set.position,
-                                                 kernel, sph::other_set, pairs, skip, first, finish,
+    return sph::reducing_pair_pass<BodyReaction>(fluid.position.size(), fluid.position, *set.cells, kernel,
+                                                 sph::other_set, pairs, skip, first, finish,
                                                  sph::with_pair_moment(terms...));
   }
 };
@@ -142,7 +142,7 @@ std::uint64_t WcsphStage::wall_density_passes(World& world) {
     for (const sph::WallSet& set : wall->wall_sets()) {
       auto start = [](Index) { return sph::DensitySums{}; };
       auto finish = [&](Index i, const sph::DensitySums& sum) { f.rho[i] += sum.rho_sum; };
-      pairs += sph::pair_pass(x.size(), x, *set.cells, set.position, world.kernel, sph::other_set, start, finish,
+      pairs += sph::pair_pass(x.size(), x, *set.cells, world.kernel, sph::other_set, start, finish,
                               sph::DensitySum{set.fields.mass});
     }
   }

@@ -180,7 +180,7 @@ void WcsphStage::setup(World& world) {
     if (std::find(walls_.begin(), walls_.end(), wall) == walls_.end()) walls_.push_back(wall);
   }
 
-  // The fluid's cell list covers the domain plus a margin for particles about
+  // The fluid's neighbour grid covers the domain plus a margin for particles about
   // to be removed; periodic axes use the period exactly.
   const double radius = world.kernel.support_radius();
   Vec3 lo = world.lo, hi = world.hi;

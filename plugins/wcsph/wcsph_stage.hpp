@@ -21,7 +21,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "talus/sph/neighbour_grid.hpp"
+#include "talus/neighbour_grid.hpp"
 #include "talus/sph/boundary_pass.hpp"
 #include "talus/sph/fluid_terms.hpp"
 #include "talus/sph/pair_term.hpp"
@@ -120,7 +120,7 @@ class WcsphStage final : public Stage {
   std::vector<sph::SphBoundary*> walls_;
   std::vector<sph::PairTerm*> pair_terms_;  // the scene's extra terms (sph/pair_term.hpp), in order
   sph::FluidSettings settings_;
-  sph::NeighbourGrid cells_;
+  NeighbourGrid cells_;
   Vec3 period_;  // domain length on periodic axes (lever arms of rigid-body wall sets)
   std::vector<double> inv_rho_, rho_over_c2_;  // scratch, refilled every evaluation (grow only)
 

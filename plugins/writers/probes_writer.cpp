@@ -360,13 +360,6 @@ void ProbesWriter::prepare(const World& world) {
     for (const auto& g : gauges_)
       if (!inside(g.at, true))
         params_.fail("gauges", g.name + " at " + point_text(g.at, world.dim) + " is outside the domain");
-    // The sampler's cell list needs three cells of one kernel support along a periodic axis.
-    const double support = world.kernel.support_radius();
-    for (int a = 0; a < world.dim; ++a)
-      if (world.periodic[a] && cells_along(world.hi[a] - world.lo[a], support) < 3)
-        params_.fail(key, std::string("the probes need a periodic axis of at least 3 kernel supports; the domain "
-                                      "spans ") + format_real(world.hi[a] - world.lo[a]) + " m along " + kAxis[a] +
-                              " (3 x " + format_real(support) + " m): enlarge it, refine dp or drop the probes");
     sampler_.configure(world.dim, world.lo, world.hi, world.periodic, world.kernel);
     if (gauge_step_ <= 0.0) gauge_step_ = world.dp > 0.0 ? 0.25 * world.dp : 0.25 * world.kernel.h();
   }

@@ -16,7 +16,7 @@
 #include <span>
 #include <vector>
 
-#include "talus/cell_list.hpp"
+#include "talus/neighbour_grid.hpp"
 #include "talus/kernel_table.hpp"
 #include "talus/vec3.hpp"
 
@@ -47,7 +47,7 @@ class SphSampler {
     out.clear();
     double sum = 0.0;
     const double radius = kernel_->support_radius();
-    cells_.for_each_neighbour(x, position_, radius, [&](Index j, const Vec3&, double r2) {
+    cells_.for_each_neighbour(x, radius, [&](Index j, const Vec3&, double r2) {
       const double w = volume_[j] * kernel_->w(std::sqrt(r2));
       out.push_back({j, w});
       sum += w;
@@ -57,7 +57,7 @@ class SphSampler {
 
   double fill_fraction(const Vec3& x) const {
     double sum = 0.0;
-    cells_.for_each_neighbour(x, position_, kernel_->support_radius(),
+    cells_.for_each_neighbour(x, kernel_->support_radius(),
                               [&](Index j, const Vec3&, double r2) { sum += volume_[j] * kernel_->w(std::sqrt(r2)); });
     return sum;
   }
@@ -66,7 +66,7 @@ class SphSampler {
   // x, dx = x - x_j (minimum image on periodic axes).
   template <class F>
   void for_each_neighbour(const Vec3& x, F&& f) const {
-    cells_.for_each_neighbour(x, position_, kernel_->support_radius(),
+    cells_.for_each_neighbour(x, kernel_->support_radius(),
                               [&](Index j, const Vec3& dx, double r2) { f(j, dx, std::sqrt(r2)); });
   }
   const KernelTable& kernel() const { return *kernel_; }
@@ -82,7 +82,7 @@ class SphSampler {
 
  private:
   const KernelTable* kernel_ = nullptr;
-  CellList cells_;
+  NeighbourGrid cells_;
   std::span<const Vec3> position_;
   std::span<const double> volume_;
 };

@@ -1,11 +1,11 @@
-// Neighbour-search throughput: cell-list build (binning + counting sort) and
+// Neighbour-search throughput: neighbour-grid build (binning + counting sort) and
 // query (all pairs within 2h) on a jittered lattice, 2D and 3D, at the
 // neighbour counts SPH uses (h/dp = 1.3 with a 2h support: ~21 in 2D, ~97 in 3D).
 #include <benchmark/benchmark.h>
 
 #include <random>
 
-#include "talus/cell_list.hpp"
+#include "talus/neighbour_grid.hpp"
 
 namespace {
 
@@ -21,7 +21,7 @@ std::vector<talus::Vec3> lattice(int dim, int n_side, double dp) {
   return pos;
 }
 
-void configure(talus::CellList& cells, int dim, int n_side, double dp, double radius) {
+void configure(talus::NeighbourGrid& cells, int dim, int n_side, double dp, double radius) {
   const double L = n_side * dp;
   cells.configure(dim, {0, 0, 0}, {L, L, dim == 3 ? L : 0.0}, radius);
 }
@@ -30,7 +30,7 @@ void Build(benchmark::State& state) {
   const int dim = static_cast<int>(state.range(0)), n_side = static_cast<int>(state.range(1));
   const double dp = 0.01, radius = 2.6 * dp;
   const auto pos = lattice(dim, n_side, dp);
-  talus::CellList cells;
+  talus::NeighbourGrid cells;
   configure(cells, dim, n_side, dp, radius);
   for (auto _ : state) {
     cells.build(pos);
@@ -43,7 +43,7 @@ void Query(benchmark::State& state) {
   const int dim = static_cast<int>(state.range(0)), n_side = static_cast<int>(state.range(1));
   const double dp = 0.01, radius = 2.6 * dp;
   const auto pos = lattice(dim, n_side, dp);
-  talus::CellList cells;
+  talus::NeighbourGrid cells;
   configure(cells, dim, n_side, dp, radius);
   cells.build(pos);
   std::size_t pairs = 0;
@@ -52,7 +52,7 @@ void Query(benchmark::State& state) {
 #pragma omp parallel for reduction(+ : pairs) schedule(static)
     for (std::size_t i = 0; i < pos.size(); ++i) {
       double sum = 0.0;
-      cells.for_each_neighbour(pos[i], pos, radius, [&](talus::Index, const talus::Vec3&, double r2) {
+      cells.for_each_neighbour(pos[i], radius, [&](talus::Index, const talus::Vec3&, double r2) {
         sum += r2;
         ++pairs;
       });

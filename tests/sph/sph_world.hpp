@@ -11,7 +11,7 @@
 #include "cubic_spline.hpp"
 #include "dynamic_particles.hpp"
 #include "repulsion.hpp"
-#include "talus/cell_list.hpp"
+#include "talus/neighbour_grid.hpp"
 #include "talus/geometry.hpp"
 #include "talus/motion.hpp"
 #include "talus/world.hpp"
@@ -170,7 +170,7 @@ struct SphWorld {
     world.time += dt;
     ++world.step;
     if (world.step % 25 == 0) {
-      talus::CellList cells;
+      talus::NeighbourGrid cells;
       cells.configure(world.dim, world.lo, world.hi, world.kernel.support_radius(), {});
       cells.build(world.fluid.position());
       world.fluid.reorder(cells.order());

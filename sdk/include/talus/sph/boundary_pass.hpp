@@ -32,7 +32,7 @@
 #include "talus/boundary.hpp"
 #include "talus/kernel_table.hpp"
 #include "talus/sph/fluid_terms.hpp"
-#include "talus/sph/neighbour_grid.hpp"
+#include "talus/neighbour_grid.hpp"
 #include "talus/stage.hpp"
 #include "talus/vec3.hpp"
 

@@ -11,7 +11,7 @@
 //   struct MySums { Vec3 v; double rho; Vec3 acc; };     // i-state and sums
 //   auto start  = [&](Index i) { return MySums{vel[i], rho[i], {}}; };
 //   auto finish = [&](Index i, const MySums& s) { acc[i] = s.acc; };
-//   sph::pair_pass(n, pos, cells, pos, kernel, sph::same_set, start, finish,
+//   sph::pair_pass(n, pos, cells, kernel, sph::same_set, start, finish,
 //                  sph::PressureForce{...}, sph::Continuity{...});
 //
 // A term is any type with `static constexpr bool uses_value, uses_gradient`
@@ -30,10 +30,9 @@
 
 #include <omp.h>
 
-#include "talus/cell_list.hpp"
-#include "talus/sph/neighbour_grid.hpp"
 #include "talus/config.hpp"
 #include "talus/kernel_table.hpp"
+#include "talus/neighbour_grid.hpp"
 #include "talus/vec3.hpp"
 
 namespace talus::sph {
@@ -71,15 +70,15 @@ TALUS_PAIR_INLINE void apply_terms(const Pair& p, Sums& sums, const Terms&... te
 }
 
 // Particle i's sums over its neighbours; returns the number of pairs.
-template <class Grid, class Sums, class... Terms>
-TALUS_PAIR_INLINE std::uint64_t gather(Index i, const Vec3& xi, const Grid& cells, std::span<const Vec3> xb,
-                                       const KernelTable& kernel, double radius, double eta2, bool skip_self,
-                                       Sums& sums, const Terms&... terms) {
+template <class Sums, class... Terms>
+TALUS_PAIR_INLINE std::uint64_t gather(Index i, const Vec3& xi, const NeighbourGrid& cells, const KernelTable& kernel,
+                                       double radius, double eta2, bool skip_self, Sums& sums,
+                                       const Terms&... terms) {
   constexpr bool need_value = (Terms::uses_value || ...);
   constexpr bool need_gradient = (Terms::uses_gradient || ...);
   std::uint64_t count = 0;
   // Inlined into the scan (with TALUS_PAIR_INLINE terms): the terms of a pass become straight-line code.
-  cells.for_each_neighbour(xi, xb, radius, [&](Index j, const Vec3& dx, double r2) __attribute__((always_inline)) {
+  cells.for_each_neighbour(xi, radius, [&](Index j, const Vec3& dx, double r2) __attribute__((always_inline)) {
     if (skip_self && j == i) return;
     Pair p;
     p.j = j;
@@ -101,13 +100,12 @@ TALUS_PAIR_INLINE std::uint64_t gather(Index i, const Vec3& xi, const Grid& cell
 }  // namespace detail
 
 // Runs the fused pass over particles i in [0, n) of set A (positions xa)
-// against the neighbours in `cells` (built on positions xb of set B).
+// against the neighbours in `cells` (built on the positions of set B).
 // start(i) -> Sums, every term's pair(p, sums) per neighbour, finish(i, sums).
 // Returns the number of pair evaluations (for throughput reports).
-// `Grid` is sph::NeighbourGrid or talus::CellList (same query contract).
-template <class Grid, class Start, class Finish, class... Terms>
-std::uint64_t pair_pass(std::size_t n, std::span<const Vec3> xa, const Grid& cells, std::span<const Vec3> xb,
-                        const KernelTable& kernel, Sets sets, Start&& start, Finish&& finish, const Terms&... terms) {
+template <class Start, class Finish, class... Terms>
+std::uint64_t pair_pass(std::size_t n, std::span<const Vec3> xa, const NeighbourGrid& cells, const KernelTable& kernel,
+                        Sets sets, Start&& start, Finish&& finish, const Terms&... terms) {
   const double radius = kernel.support_radius();
   const double eta2 = pair_eta2(kernel.h());
   const bool skip_self = sets == Sets::same;
@@ -119,7 +117,7 @@ std::uint64_t pair_pass(std::size_t n, std::span<const Vec3> xa, const Grid& cel
     const Index i = static_cast<Index>(ii);
     auto sums = start(i);
     std::uint64_t count = 0;
-    cells.for_each_neighbour(xa[i], xb, radius, [&](Index j, const Vec3& dx, double r2) __attribute__((always_inline)) {
+    cells.for_each_neighbour(xa[i], radius, [&](Index j, const Vec3& dx, double r2) __attribute__((always_inline)) {
       if (skip_self && j == i) return;
       Pair p;
       p.j = j;
@@ -147,10 +145,10 @@ std::uint64_t pair_pass(std::size_t n, std::span<const Vec3> xa, const Grid& cel
 // share to its thread's Acc (Acc{} is zero, `+=` adds), and the total is the
 // thread partials added in thread order (static schedule: the same split, so
 // the same sum, in every run at a given thread count). `pairs` gets the count.
-template <class Acc, class Grid, class Skip, class Start, class Finish, class... Terms>
-Acc reducing_pair_pass(std::size_t n, std::span<const Vec3> xa, const Grid& cells, std::span<const Vec3> xb,
-                       const KernelTable& kernel, Sets sets, std::uint64_t& pairs, Skip&& skip, Start&& start,
-                       Finish&& finish, const Terms&... terms) {
+template <class Acc, class Skip, class Start, class Finish, class... Terms>
+Acc reducing_pair_pass(std::size_t n, std::span<const Vec3> xa, const NeighbourGrid& cells, const KernelTable& kernel,
+                       Sets sets, std::uint64_t& pairs, Skip&& skip, Start&& start, Finish&& finish,
+                       const Terms&... terms) {
   const double radius = kernel.support_radius();
   const double eta2 = pair_eta2(kernel.h());
   const bool skip_self = sets == Sets::same;
@@ -164,7 +162,7 @@ Acc reducing_pair_pass(std::size_t n, std::span<const Vec3> xa, const Grid& cell
       const Index i = static_cast<Index>(ii);
       if (skip(i)) continue;
       auto sums = start(i);
-      count += detail::gather(i, xa[i], cells, xb, kernel, radius, eta2, skip_self, sums, terms...);
+      count += detail::gather(i, xa[i], cells, kernel, radius, eta2, skip_self, sums, terms...);
       finish(i, sums, partial);
     }
 #pragma omp for ordered schedule(static, 1)

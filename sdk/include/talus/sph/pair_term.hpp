@@ -52,7 +52,7 @@ class TALUS_API PairTerm : public Model {
 template <class Start, class Finish, class... Terms>
 std::uint64_t fluid_pass(const PairTermInput& in, Start&& start, Finish&& finish, const Terms&... terms) {
   const std::span<const Vec3> x = in.fluid.position;
-  return pair_pass(x.size(), x, *in.fluid.cells, x, in.world.kernel, same_set, start, finish, terms...);
+  return pair_pass(x.size(), x, *in.fluid.cells, in.world.kernel, same_set, start, finish, terms...);
 }
 
 }  // namespace talus::sph

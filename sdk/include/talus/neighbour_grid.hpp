@@ -1,0 +1,361 @@
+// The neighbour search of every particle method in Talus: the SPH pair
+// passes and wall sets, the samplers of the writers, the host's cache
+// re-sort and the depth-integrated run-out.
+//
+// Points are binned by a counting sort into cells of half the search radius
+// and their coordinates copied, in cell order, into separate x, y, z arrays.
+// A query visits, per row of cells (fixed y and z), only the x-range that can
+// hold points within its reach and skips the rows that cannot, so it scans
+// about 1.7 times the sphere's volume instead of the 6.4 times of a 3 x 3 x 3
+// stencil of radius-sized cells (3D). Candidates are tested without a branch
+// and the hits handed on in chunks, so the scan never mispredicts.
+//
+// Search radii that differ by orders of magnitude (a thinning run-out front,
+// where the smoothing length grows while the bulk keeps the scene's) are
+// binned into levels: level k holds radii in (R 2^(k-1), R 2^k], level 0
+// those up to R, each level on its own cells of half its bound. A query's
+// cost is then set by the local radii, not by a handful of large ones.
+//
+// Along a periodic axis the cell range of a query is taken unwrapped, so
+// every image of a point within reach is reported, once, even for a reach
+// longer than the period.
+//
+// Query contract: f(j, dx, r2) for every binned point j and image with
+// r2 = |dx|^2 < reach^2, dx = x - x_j (the image's offset), the point itself
+// included if it was binned. Nothing allocates after the first build at a
+// given size and number of levels.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "talus/config.hpp"
+#include "talus/error.hpp"
+#include "talus/vec3.hpp"
+
+namespace talus {
+
+// Cells of at least `cell` along an axis of `length`: floor(length / cell),
+// at least 1, and capped so that the conversion to int stays defined (a
+// coarser binning than asked is still correct, only slower).
+inline int cells_along(double length, double cell) {
+  const double n = std::floor(length / cell);
+  constexpr double most = 1 << 24;
+  return n >= 1.0 ? static_cast<int>(std::min(n, most)) : 1;
+}
+
+// Halves the axis with the most cells until the grid has at most 2^24 cells.
+// Points far apart, such as a wall spaced 1e19 m, ask for more cells than a
+// size_t counts; coarser cells than asked are still correct, only slower.
+inline void fit_cells(std::array<int, 3>& n) {
+  constexpr double most = 1 << 24;
+  while (static_cast<double>(n[0]) * n[1] * n[2] > most) {
+    int a = 0;
+    for (int b = 1; b < 3; ++b)
+      if (n[b] > n[a]) a = b;
+    n[a] = std::max(n[a] / 2, 1);
+  }
+}
+
+// floor(s) as an int within [lo, hi]; clamped before the conversion, which
+// is undefined for what an int cannot hold (a point far outside the grid).
+// NaN gives lo.
+inline int floor_within(double s, int lo, int hi) {
+  const double k = std::floor(s);
+  return k > lo ? (k < hi ? static_cast<int>(k) : hi) : lo;
+}
+
+class NeighbourGrid {
+ public:
+  static constexpr int max_levels = 24;
+
+  // lo/hi bound the points (points outside are kept in the edge cells, which
+  // stays correct, only slower); along a periodic axis they are the period.
+  // `radius` is the largest search radius of level 0: with build(pos), of
+  // every query.
+  void configure(int dim, Vec3 lo, Vec3 hi, double radius, std::array<bool, 3> periodic = {}) {
+    dim_ = dim;
+    lo_ = lo;
+    radius_ = radius;
+    periodic_ = {};
+    length_ = {0.0, 0.0, 0.0};
+    for (int a = 0; a < dim && a < 3; ++a) {
+      periodic_[a] = periodic[a];
+      length_[a] = hi[a] - lo[a];
+    }
+    any_periodic_ = periodic_[0] || periodic_[1] || periodic_[2];
+    lay_out_levels(1);
+  }
+
+  // Bins points that are all searched with at most radius().
+  void build(std::span<const Vec3> pos) {
+    const std::size_t n = pos.size();
+    std::fill(level_max_.begin(), level_max_.end(), 0.0);
+    if (n > 0) level_max_[0] = radius_;
+    key_.resize(n);
+    const Level& L = level_[0];
+#pragma omp parallel for schedule(static) if (n > 4096)
+    for (std::size_t i = 0; i < n; ++i) key_[i] = static_cast<Index>(L.cell_index(pos[i], lo_, dim_));
+    sort_into_cells(pos);
+  }
+
+  // Bins points with their own search radii, each into the level of its radius.
+  void build(std::span<const Vec3> pos, std::span<const double> radius) {
+    const std::size_t n = pos.size();
+    int top = 0;
+    for (std::size_t i = 0; i < n; ++i) top = std::max(top, level_of(radius[i]));
+    if (top >= static_cast<int>(level_.size())) lay_out_levels(top + 1);
+    std::fill(level_max_.begin(), level_max_.end(), 0.0);
+    key_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const int k = level_of(radius[i]);
+      level_max_[k] = std::max(level_max_[k], radius[i]);
+      key_[i] = static_cast<Index>(level_[k].offset + level_[k].cell_index(pos[i], lo_, dim_));
+    }
+    sort_into_cells(pos);
+  }
+
+  // The binned points' indices in cell order (level by level).
+  std::span<const Index> order() const { return order_; }
+  double radius() const { return radius_; }
+  double largest_radius() const { return *std::max_element(level_max_.begin(), level_max_.end()); }
+
+  // Every point j within `reach` of x (a gather: reach is the caller's radius).
+  template <class F>
+  TALUS_PAIR_INLINE void for_each_neighbour(const Vec3& x, double reach, F&& f) const {
+    if (any_periodic_)
+      query<true, false>(x, reach, f);
+    else
+      query<false, false>(x, reach, f);
+  }
+
+  // Every point j of a level within max(own, the level's largest radius) of x:
+  // a superset of the pairs with r < max(R_x, R_j), which the caller keeps.
+  template <class F>
+  void for_each_candidate_pair(const Vec3& x, double own, F&& f) const {
+    if (any_periodic_)
+      query<true, true>(x, own, f);
+    else
+      query<false, true>(x, own, f);
+  }
+
+ private:
+  struct Level {
+    std::array<int, 3> n{1, 1, 1};
+    std::array<double, 3> cell{1, 1, 1}, inv{1, 1, 1};
+    std::size_t offset = 0;  // first cell in cell_start_
+    int axis_cell(double v, double lo, int a) const { return floor_within((v - lo) * inv[a], 0, n[a] - 1); }
+    std::size_t cell_index(const Vec3& p, const Vec3& lo, int dim) const {
+      const int z = dim == 3 ? axis_cell(p.z, lo.z, 2) : 0;
+      return (static_cast<std::size_t>(z) * n[1] + axis_cell(p.y, lo.y, 1)) * n[0] + axis_cell(p.x, lo.x, 0);
+    }
+  };
+
+  int level_of(double r) const {
+    if (!(r > radius_)) return 0;
+    const int k = static_cast<int>(std::ceil(std::log2(r / radius_) - 1e-12));
+    if (!(k < max_levels)) {
+      char text[160];
+      std::snprintf(text, sizeof text,
+                    "neighbour search: a search radius of %.4g m exceeds 2^%d times the scene's (%.4g m)", r,
+                    max_levels, radius_);
+      throw RunError(text);
+    }
+    return std::max(k, 0);
+  }
+
+  void lay_out_levels(int count) {
+    level_.resize(count);
+    level_max_.assign(count, 0.0);
+    std::size_t total = 0;
+    for (int k = 0; k < count; ++k) {
+      Level& L = level_[k];
+      const double cell = 0.5 * radius_ * std::ldexp(1.0, k);
+      L.n = {1, 1, 1};
+      for (int a = 0; a < dim_ && a < 3; ++a) L.n[a] = cells_along(length_[a], cell);
+      fit_cells(L.n);
+      for (int a = 0; a < dim_ && a < 3; ++a) {
+        L.cell[a] = length_[a] / L.n[a];
+        L.inv[a] = 1.0 / L.cell[a];
+      }
+      L.offset = total;
+      total += static_cast<std::size_t>(L.n[0]) * L.n[1] * L.n[2];
+    }
+    cell_start_.assign(total + 1, 0);
+  }
+
+  // Counting sort of key_ into order_, with the coordinates copied alongside.
+  void sort_into_cells(std::span<const Vec3> pos) {
+    const std::size_t n = pos.size();
+    order_.resize(n);
+    xs_.resize(n);
+    ys_.resize(n);
+    zs_.resize(n);
+    std::fill(cell_start_.begin(), cell_start_.end(), 0);
+    for (std::size_t i = 0; i < n; ++i) ++cell_start_[key_[i] + 1];
+    for (std::size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
+    cursor_.assign(cell_start_.begin(), cell_start_.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Index s = cursor_[key_[i]]++;
+      order_[s] = static_cast<Index>(i);
+      xs_[s] = pos[i].x;
+      ys_[s] = pos[i].y;
+      zs_[s] = dim_ == 3 ? pos[i].z : 0.0;
+    }
+  }
+
+  static constexpr int chunk = 64;
+  static constexpr int far_image = 27;  // an image beyond the neighbouring periods
+  // Hits of one query: sorted index and which periodic image (shift) it was
+  // found in; without periodic axes every shift is zero and is not stored.
+  struct Hits {
+    Index s[chunk];
+    std::uint8_t image[chunk];
+    Vec3 shift[far_image + 1];
+    int count = 0;
+  };
+
+  template <bool Periodic, bool Candidates, class F>
+  TALUS_PAIR_INLINE void query(const Vec3& at, double own, F& f) const {
+    const Vec3 x{at.x, at.y, dim_ == 3 ? at.z : 0.0};
+    Hits hits;
+    for (std::size_t k = 0; k < level_.size(); ++k) {
+      if (!(level_max_[k] > 0.0)) continue;  // an empty level
+      const double reach = Candidates ? std::max(own, level_max_[k]) : own;
+      query_level<Periodic>(level_[k], x, reach, hits, f);
+    }
+    flush<Periodic>(hits, x, f);
+  }
+
+  // The cells of level L within `reach` of x, row by row.
+  template <bool Periodic, class F>
+  TALUS_PAIR_INLINE void query_level(const Level& L, const Vec3& x, double reach, Hits& hits, F& f) const {
+    const double r2max = reach * reach;
+    int z0 = 0, z1 = 0, y0, y1;
+    if (dim_ == 3) cell_range(L, x.z, reach, 2, z0, z1);
+    cell_range(L, x.y, reach, 1, y0, y1);
+    for (int cz = z0; cz <= z1; ++cz) {
+      const double gz = dim_ == 3 ? gap(L, x.z, cz, 2) : 0.0;
+      if (gz * gz >= r2max) continue;
+      int iz = 0;
+      const int rz = wrap(L, cz, 2, iz);
+      for (int cy = y0; cy <= y1; ++cy) {
+        const double gy = gap(L, x.y, cy, 1);
+        const double rest = r2max - gy * gy - gz * gz;
+        if (rest <= 0.0) continue;
+        int iy = 0;
+        const int ry = wrap(L, cy, 1, iy);
+        // x-range of cells this row can contribute.
+        int x0, x1;
+        cell_range(L, x.x, std::sqrt(rest), 0, x0, x1);
+        const std::size_t row = L.offset + (static_cast<std::size_t>(rz) * L.n[1] + ry) * L.n[0];
+        if (!periodic_[0]) {
+          const int image = Periodic ? image_of(hits, x, f, 0, iy, iz) : 0;
+          scan<Periodic>(row + x0, row + x1 + 1, x, image, r2max, hits, f);
+        } else {
+          for (int cx = x0; cx <= x1; ++cx) {
+            int ix = 0;
+            const int rx = wrap(L, cx, 0, ix);
+            scan<Periodic>(row + rx, row + rx + 1, x, image_of(hits, x, f, ix, iy, iz), r2max, hits, f);
+          }
+        }
+      }
+    }
+  }
+
+  // The cells [v - reach, v + reach] overlaps along axis a: unwrapped on a
+  // periodic axis, within the grid on a closed one (whose edge cells hold
+  // the points beyond it).
+  void cell_range(const Level& L, double v, double reach, int a, int& first, int& last) const {
+    constexpr int far = 1 << 28;  // images this far never matter; keeps the ints defined
+    const int lo = periodic_[a] ? -far : 0, hi = periodic_[a] ? far : L.n[a] - 1;
+    first = floor_within((v - reach - lo_[a]) * L.inv[a], lo, hi);
+    last = floor_within((v + reach - lo_[a]) * L.inv[a], lo, hi);
+  }
+
+  // The stored cell of an unwrapped cell coordinate k, and its image (k = stored + image n).
+  static int wrap(const Level& L, int k, int a, int& image) {
+    if (k >= 0 && k < L.n[a]) return k;
+    image = static_cast<int>(std::floor(static_cast<double>(k) / L.n[a]));
+    return k - image * L.n[a];
+  }
+
+  // The slot of image (ix, iy, iz) in hits.shift: one of 27 for the
+  // neighbouring periods. A farther image gets far_image, whose shift is
+  // rewritten, so the hits found in the previous one are handed on first.
+  template <class F>
+  int image_of(Hits& hits, const Vec3& x, F& f, int ix, int iy, int iz) const {
+    const bool near = std::abs(ix) <= 1 && std::abs(iy) <= 1 && std::abs(iz) <= 1;
+    const int slot = near ? (ix + 1) + 3 * (iy + 1) + 9 * (iz + 1) : far_image;
+    if (!near) flush<true>(hits, x, f);
+    hits.shift[slot] = Vec3{ix * length_[0], iy * length_[1], iz * length_[2]};
+    return slot;
+  }
+
+  template <bool Periodic, class F>
+  TALUS_PAIR_INLINE void flush(Hits& h, const Vec3& x, F& f) const {
+    for (int k = 0; k < h.count; ++k) {
+      const Index s = h.s[k];
+      Vec3 q = x;
+      if constexpr (Periodic) q -= h.shift[h.image[k]];
+      const Vec3 dx{q.x - xs_[s], q.y - ys_[s], q.z - zs_[s]};
+      f(order_[s], dx, dx.x * dx.x + dx.y * dx.y + dx.z * dx.z);
+    }
+    h.count = 0;
+  }
+
+  // Tests the sorted points of cells [c0, c1) without a branch on the
+  // outcome; hands full chunks to f.
+  template <bool Periodic, class F>
+  TALUS_PAIR_INLINE void scan(std::size_t c0, std::size_t c1, const Vec3& x, int image, double r2max, Hits& hits,
+                              F& f) const {
+    const Index e = cell_start_[c1];
+    Vec3 q = x;
+    if constexpr (Periodic) q -= hits.shift[image];
+    // The count lives in a register: kept in `hits`, every candidate would wait on a store and reload.
+    int count = hits.count;
+    for (Index s = cell_start_[c0]; s < e; ++s) {
+      const double dx = q.x - xs_[s], dy = q.y - ys_[s], dz = q.z - zs_[s];
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      hits.s[count] = s;
+      if constexpr (Periodic) hits.image[count] = static_cast<std::uint8_t>(image);
+      count += r2 < r2max ? 1 : 0;
+      if (count == chunk) {
+        hits.count = count;
+        flush<Periodic>(hits, x, f);
+        count = 0;
+      }
+    }
+    hits.count = count;
+  }
+
+  // Distance along axis a from v to the slab of (unwrapped) cell k; 0 inside.
+  // The edge cells of a closed axis extend to infinity (they hold the points
+  // beyond the grid).
+  double gap(const Level& L, double v, int k, int a) const {
+    const double c0 = lo_[a] + k * L.cell[a], c1 = c0 + L.cell[a];
+    const bool open_below = !periodic_[a] && k <= 0, open_above = !periodic_[a] && k >= L.n[a] - 1;
+    if (v < c0 && !open_below) return c0 - v;
+    if (v > c1 && !open_above) return v - c1;
+    return 0.0;
+  }
+
+  int dim_ = 3;
+  Vec3 lo_{};
+  std::array<double, 3> length_{0, 0, 0};
+  double radius_ = 0.0;
+  std::array<bool, 3> periodic_{};
+  bool any_periodic_ = false;
+  std::vector<Level> level_;
+  std::vector<double> level_max_;  // largest search radius binned per level; 0: empty
+  std::vector<Index> cell_start_, cursor_, key_, order_;
+  std::vector<double> xs_, ys_, zs_;
+};
+
+}  // namespace talus

@@ -1,0 +1,235 @@
+// The neighbour grid against brute force: the same neighbours and image
+// offsets in 2D and 3D, on closed and periodic axes (including periods
+// shorter than two reaches, where a point meets several images of another),
+// for points outside the bounds and clustered points, with one radius and
+// with per-point radii spread over two orders of magnitude.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <tuple>
+#include <vector>
+
+#include "talus/neighbour_grid.hpp"
+
+namespace talus {
+namespace {
+
+// i, j and the image's offset x 1e6 (tells images apart).
+using Found = std::tuple<Index, Index, long long, long long, long long>;
+
+Found found(std::size_t i, Index j, const Vec3& d) {
+  return {static_cast<Index>(i), j, std::llround(d.x * 1e6), std::llround(d.y * 1e6), std::llround(d.z * 1e6)};
+}
+
+struct Cloud {
+  int dim = 3;
+  Vec3 lo, hi;
+  std::array<bool, 3> periodic{};
+  std::vector<Vec3> pos;
+  std::vector<double> radius;
+};
+
+// Points in [lo, hi] (with a margin beyond closed axes if `outside`), a
+// fifth of them clustered; in 2D the z coordinate is noise the search must ignore.
+Cloud random_cloud(int dim, Vec3 lo, Vec3 hi, std::array<bool, 3> periodic, bool outside, std::size_t n,
+                   unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Cloud c{dim, lo, hi, periodic, {}, {}};
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec3 p{0.0, 0.0, u(rng)};
+    for (int a = 0; a < dim; ++a) {
+      const double margin = outside && !periodic[a] ? 0.2 : 0.0;
+      p[a] = lo[a] - margin + (hi[a] - lo[a] + 2 * margin) * u(rng);
+    }
+    if (i > 0 && u(rng) < 0.2)
+      for (int a = 0; a < dim; ++a) p[a] = c.pos[0][a] + 0.01 * u(rng);
+    c.pos.push_back(p);
+  }
+  return c;
+}
+
+// Radii mostly near r0, with a tail up to 100 r0 (a thin run-out front).
+void spread_radii(Cloud& c, double r0, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  c.radius.clear();
+  for (std::size_t i = 0; i < c.pos.size(); ++i) {
+    const double e = u(rng);
+    c.radius.push_back(e < 0.8 ? r0 * (0.5 + e) : r0 * std::pow(100.0, (e - 0.8) / 0.2));
+  }
+}
+
+// Every image of every j within reach(i, j) (at most `largest`) of i.
+template <class Reach>
+std::vector<Found> brute_force(const Cloud& c, double largest, Reach&& reach) {
+  std::vector<Found> out;
+  std::array<int, 3> images{};
+  for (int a = 0; a < c.dim; ++a)
+    if (c.periodic[a]) images[a] = static_cast<int>(std::ceil(largest / (c.hi[a] - c.lo[a]))) + 1;
+  for (std::size_t i = 0; i < c.pos.size(); ++i)
+    for (std::size_t j = 0; j < c.pos.size(); ++j) {
+      const double r = reach(i, j);
+      for (int ix = -images[0]; ix <= images[0]; ++ix)
+        for (int iy = -images[1]; iy <= images[1]; ++iy)
+          for (int iz = -images[2]; iz <= images[2]; ++iz) {
+            Vec3 d = c.pos[i] - c.pos[j];
+            if (c.dim < 3) d.z = 0.0;
+            d -= Vec3{ix * (c.hi.x - c.lo.x), iy * (c.hi.y - c.lo.y), iz * (c.hi.z - c.lo.z)};
+            if (norm2(d) < r * r) out.push_back(found(i, static_cast<Index>(j), d));
+          }
+    }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<Found> one_radius(const Cloud& c, double radius) {
+  NeighbourGrid grid;
+  grid.configure(c.dim, c.lo, c.hi, radius, c.periodic);
+  grid.build(c.pos);
+  std::vector<Found> out;
+  for (std::size_t i = 0; i < c.pos.size(); ++i)
+    grid.for_each_neighbour(c.pos[i], radius, [&](Index j, const Vec3& dx, double r2) {
+      EXPECT_NEAR(r2, norm2(dx), 1e-15);
+      if (c.dim < 3) EXPECT_EQ(dx.z, 0.0);
+      out.push_back(found(i, j, dx));
+    });
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Gather: reach = own radius. Candidates: the pairs with r < max(R_i, R_j), kept by the caller.
+std::vector<Found> own_radii(NeighbourGrid& grid, const Cloud& c, bool candidates) {
+  grid.build(c.pos, c.radius);
+  std::vector<Found> out;
+  for (std::size_t i = 0; i < c.pos.size(); ++i) {
+    auto keep = [&](Index j, const Vec3& d, double r2) {
+      const double reach = candidates ? std::max(c.radius[i], c.radius[j]) : c.radius[i];
+      if (r2 < reach * reach) out.push_back(found(i, j, d));
+    };
+    if (candidates)
+      grid.for_each_candidate_pair(c.pos[i], c.radius[i], keep);
+    else
+      grid.for_each_neighbour(c.pos[i], c.radius[i], keep);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+struct Layout {
+  int dim;
+  std::array<bool, 3> periodic;
+  bool outside;
+};
+
+class OneRadius : public ::testing::TestWithParam<Layout> {};
+
+TEST_P(OneRadius, FindsExactlyTheNeighboursWithinTheRadius) {
+  const auto [dim, periodic, outside] = GetParam();
+  const double radius = 0.11;
+  const Cloud c = random_cloud(dim, {-0.3, 0.1, 0.0}, {0.9, 0.7, 0.5}, periodic, outside, 1200,
+                               3u + dim + 2 * periodic[0] + 4 * periodic[1] + 8 * periodic[2] + 16 * outside);
+  const auto expected = brute_force(c, radius, [&](std::size_t, std::size_t) { return radius; });
+  EXPECT_GT(expected.size(), c.pos.size() * 3);  // the test really looks at neighbours
+  EXPECT_EQ(one_radius(c, radius), expected);
+}
+
+INSTANTIATE_TEST_SUITE_P(Layouts, OneRadius,
+                         ::testing::Values(Layout{2, {false, false, false}, false},
+                                           Layout{2, {false, false, false}, true}, Layout{2, {true, false, false}, true},
+                                           Layout{2, {true, true, false}, false}, Layout{3, {false, false, false}, false},
+                                           Layout{3, {false, false, false}, true}, Layout{3, {false, true, false}, false},
+                                           Layout{3, {true, true, false}, true}, Layout{3, {true, true, true}, false}));
+
+// A period of 1.5 radii: a point meets up to two images of another along it.
+TEST(NeighbourGrid, ReportsEveryImageOnAPeriodShorterThanTwoRadii) {
+  const Cloud c = random_cloud(2, {0.0, 0.0, 0.0}, {0.15, 1.0, 0.0}, {true, false, false}, false, 300, 11u);
+  const auto expected = brute_force(c, 0.1, [](std::size_t, std::size_t) { return 0.1; });
+  EXPECT_EQ(one_radius(c, 0.1), expected);
+}
+
+class OwnRadii : public ::testing::TestWithParam<std::tuple<bool, bool, bool>> {};
+
+// The largest reaches (10 m) exceed both periods (8 m, 3 m): with periodic
+// axes a pair appears once per image within reach.
+TEST_P(OwnRadii, SamePairsAndImagesAsBruteForce) {
+  const auto [px, py, candidates] = GetParam();
+  Cloud c = random_cloud(2, {-3.0, 1.0, 0.0}, {5.0, 4.0, 0.0}, {px, py, false}, false, 400, 7u + px + 2 * py);
+  spread_radii(c, 0.1, 5u + 4 * candidates);
+  const double largest = *std::max_element(c.radius.begin(), c.radius.end());
+  const auto expected = brute_force(c, largest, [&](std::size_t i, std::size_t j) {
+    return candidates ? std::max(c.radius[i], c.radius[j]) : c.radius[i];
+  });
+  EXPECT_GT(expected.size(), c.pos.size() * 2);
+  NeighbourGrid grid;
+  grid.configure(2, c.lo, c.hi, 0.1, c.periodic);
+  EXPECT_EQ(own_radii(grid, c, candidates), expected);
+}
+
+INSTANTIATE_TEST_SUITE_P(Axes, OwnRadii, ::testing::Combine(::testing::Bool(), ::testing::Bool(), ::testing::Bool()));
+
+TEST(NeighbourGrid, OwnRadiiIn3D) {
+  Cloud c = random_cloud(3, {0.0, 0.0, 0.0}, {1.0, 0.8, 0.6}, {false, true, false}, true, 500, 13u);
+  spread_radii(c, 0.04, 17u);
+  for (double& r : c.radius) r = std::min(r, 0.5);
+  NeighbourGrid grid;
+  grid.configure(3, c.lo, c.hi, 0.04, c.periodic);
+  EXPECT_EQ(own_radii(grid, c, false), brute_force(c, 0.5, [&](std::size_t i, std::size_t) { return c.radius[i]; }));
+}
+
+TEST(NeighbourGrid, RebuildsWithMoreLevelsAndFewerPoints) {
+  Cloud c = random_cloud(2, {0.0, 0.0, 0.0}, {2.0, 2.0, 0.0}, {}, false, 200, 3u);
+  spread_radii(c, 0.05, 3u);
+  for (double& r : c.radius) r = std::min(r, 0.1);
+  auto symmetric = [&](std::size_t i, std::size_t j) { return std::max(c.radius[i], c.radius[j]); };
+  NeighbourGrid grid;
+  grid.configure(2, c.lo, c.hi, 0.05);
+  EXPECT_EQ(own_radii(grid, c, true), brute_force(c, 1.5, symmetric));
+  // Fewer points, and one whose radius needs levels the grid has not laid out yet.
+  c.pos.resize(50);
+  c.radius.resize(50);
+  c.radius[0] = 1.5;
+  EXPECT_EQ(own_radii(grid, c, true), brute_force(c, 1.5, symmetric));
+  EXPECT_EQ(grid.largest_radius(), 1.5);
+  // Back to one radius: the levels laid out stay, empty, and are not searched.
+  grid.build(c.pos);
+  EXPECT_EQ(grid.largest_radius(), 0.05);
+}
+
+TEST(NeighbourGrid, RefusesARadiusBeyondTheLastLevel) {
+  NeighbourGrid grid;
+  grid.configure(2, {0, 0, 0}, {1, 1, 0}, 0.1);
+  const std::vector<Vec3> pos{{0.5, 0.5, 0.0}};
+  const std::vector<double> radius{0.1 * std::ldexp(1.0, NeighbourGrid::max_levels + 1)};
+  EXPECT_THROW(grid.build(pos, radius), RunError);
+}
+
+TEST(NeighbourGrid, OrderIsAPermutation) {
+  std::vector<Vec3> pos;
+  for (int i = 0; i < 100; ++i) pos.push_back({std::fmod(i * 0.37, 1.0), std::fmod(i * 0.61, 1.0), 0.0});
+  NeighbourGrid grid;
+  grid.configure(2, {0, 0, 0}, {1, 1, 0}, 0.25);
+  grid.build(pos);
+  auto order = std::vector<Index>(grid.order().begin(), grid.order().end());
+  std::sort(order.begin(), order.end());
+  for (Index i = 0; i < 100; ++i) EXPECT_EQ(order[i], i);
+}
+
+// Wall particles 1e19 m apart (a fuzzed dp) asked for more cells than a
+// size_t counts: the product wrapped, the grid was too small and build()
+// wrote past it. The grid is coarsened instead, and still finds neighbours.
+TEST(NeighbourGrid, HugeExtentIsCoarsenedNotOverflowed) {
+  const std::vector<Vec3> pos = {{-1e19, -1e19, -1e19}, {1e19, 1e19, 1e19}, {0, 0, 0}, {0.05, 0, 0}};
+  NeighbourGrid grid;
+  grid.configure(3, pos[0], pos[1], 0.1);
+  grid.build(pos);
+  std::vector<Index> hits;
+  grid.for_each_neighbour(pos[2], 0.1, [&](Index j, const Vec3&, double) { hits.push_back(j); });
+  std::sort(hits.begin(), hits.end());
+  EXPECT_EQ(hits, (std::vector<Index>{2, 3}));
+}
+
+}  // namespace
+}  // namespace talus
