@@ -45,7 +45,6 @@ Simulation::Simulation(PluginRegistry& registry, Scene scene) : registry_(regist
   build_kernel();
   check_periodic_axes();
   build_bodies();
-  world_.refresh_material_index();
   build_stages();
   world_.refresh_material_index();
   build_writers();

@@ -67,9 +67,10 @@ class TALUS_API Simulation {
   void build_materials();
   void build_kernel();
   void check_periodic_axes() const;
-  void build_bodies();
+  void build_bodies();                                   // the body records
+  void fill_bodies(const std::vector<std::string>& fields);  // their particles, with these start fields
   void build_stages();
-  void check_stage_parts() const;  // the pipeline order against the stages' StageParts
+  std::vector<std::string> check_stage_parts() const;  // the pipeline against the stages' StageParts
   void build_writers();
   void remove_escaped_particles();
   void resort_particles();

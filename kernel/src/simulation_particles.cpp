@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <sstream>
 
 #include "number_text.hpp"
@@ -49,15 +50,23 @@ void Simulation::check_finite() const {
   const ParticleStore& f = world_.fluid;
   const std::size_t n = f.size();
   const auto x = f.position();
-  const auto u = f.vector("velocity");
-  const auto rho = f.scalar("density");
-  const auto p = f.scalar("pressure");
+  // The start-state fields the stages read (a run-out scene has no pressure).
+  const auto u = f.has("velocity") ? f.vector("velocity") : std::span<const Vec3>{};
+  const auto rho = f.has("density") ? f.scalar("density") : std::span<const double>{};
+  const auto p = f.has("pressure") ? f.scalar("pressure") : std::span<const double>{};
+  auto non_finite = [&](std::size_t i) -> const char* {
+    if (!is_finite(x[i])) return "position";
+    if (!u.empty() && !is_finite(u[i])) return "velocity";
+    if (!rho.empty() && !std::isfinite(rho[i])) return "density";
+    if (!p.empty() && !std::isfinite(p[i])) return "pressure";
+    return nullptr;
+  };
   std::size_t bad = n;
 #pragma omp parallel for reduction(min : bad) schedule(static) if (n > 4096)
   for (std::size_t i = 0; i < n; ++i)
-    if (!is_finite(x[i]) || !is_finite(u[i]) || !std::isfinite(rho[i]) || !std::isfinite(p[i])) bad = std::min(bad, i);
+    if (non_finite(i)) bad = std::min(bad, i);
   if (bad == n) return;
-  const char* what = !is_finite(x[bad]) ? "position" : !is_finite(u[bad]) ? "velocity" : !std::isfinite(rho[bad]) ? "density" : "pressure";
+  const char* what = non_finite(bad);
   const int body = f.body()[bad];
   std::ostringstream msg;
   msg << "error: step " << world_.step << " (t = " << fixed(world_.time, 6) << " s): particle " << f.ids()[bad]

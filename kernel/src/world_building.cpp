@@ -133,12 +133,6 @@ void start_hydrostatic(World& world, const std::vector<ParamValues>& bodies) {
 
 void Simulation::build_bodies() {
   const auto& bodies = scene_.values.objects("bodies");
-  ParticleStore& fluid = world_.fluid;
-  fluid.require({"velocity", FieldType::vector, "m/s", true, true});
-  fluid.require({"density", FieldType::scalar, "kg/m^3", true, true});
-  fluid.require({"pressure", FieldType::scalar, "Pa", true, true});
-  fluid.require({"mass", FieldType::scalar, "kg", true, true});
-
   for (std::size_t bi = 0; bi < bodies.size(); ++bi) {
     const ParamValues& v = bodies[bi];
     Body body;
@@ -148,8 +142,35 @@ void Simulation::build_bodies() {
     body.kind = kind == "fluid" ? BodyKind::fluid : (kind == "wall" ? BodyKind::wall : BodyKind::block);
     if (v.has("material")) body.material = world_.find_material(v.string("material"));
     if (v.has("dp")) body.dp = v.real("dp");
+    if (v.has("boundary")) {  // walls, and blocks that the fluid sees
+      auto boundary = registry_.create_as<Boundary>("boundary", v.model_name("boundary"), v.model_params("boundary"));
+      body.boundary = boundary.get();
+      models_.push_back(std::move(boundary));
+    }
+    if (v.has("contact")) {
+      auto contact = registry_.create("contact", v.model_name("contact"), v.model_params("contact"));
+      body.contact = contact.get();
+      models_.push_back(std::move(contact));
+    }
     world_.bodies.push_back(std::move(body));
   }
+}
+
+namespace {
+// The fields of a fluid body's start state (StageParts::body_fields).
+const FieldInfo kBodyFields[] = {{"velocity", FieldType::vector, "m/s", true, true},
+                                 {"density", FieldType::scalar, "kg/m^3", true, true},
+                                 {"pressure", FieldType::scalar, "Pa", true, true},
+                                 {"mass", FieldType::scalar, "kg", true, true}};
+}  // namespace
+
+void Simulation::fill_bodies(const std::vector<std::string>& fields) {
+  const auto& bodies = scene_.values.objects("bodies");
+  ParticleStore& fluid = world_.fluid;
+  for (const FieldInfo& f : kBodyFields)
+    if (std::ranges::find(fields, f.name) != fields.end()) fluid.require(f);
+  const bool velocity = fluid.has("velocity"), density = fluid.has("density"), pressure = fluid.has("pressure"),
+             mass = fluid.has("mass");
 
   for (std::size_t bi = 0; bi < bodies.size(); ++bi) {
     const ParamValues& v = bodies[bi];
@@ -171,39 +192,24 @@ void Simulation::build_bodies() {
                             vec_text(world_.hi, world_.dim) + "; shrink the shape or enlarge the domain");
       const std::size_t first = fluid.append(points.size());
       auto x = fluid.position();
-      auto u = fluid.vector("velocity");
-      auto rho = fluid.scalar("density");
-      auto p = fluid.scalar("pressure");
-      auto mass = fluid.scalar("mass");
       auto bid = fluid.body();
       auto mid = fluid.material();
-      const Vec3 u0 = v.vector("velocity");
-      const double particle_mass = m.density * std::pow(body.dp, world_.dim);
       if (v.boolean("hydrostatic") && !m.eos)
         v.fail("hydrostatic", "needs the material '" + m.name + "' to have an \"eos\"");
       for (std::size_t k = 0; k < points.size(); ++k) {
-        const std::size_t i = first + k;
-        x[i] = points[k];
-        u[i] = u0;
-        mass[i] = particle_mass;
-        bid[i] = static_cast<std::int32_t>(bi);
-        mid[i] = body.material;
-        p[i] = 0.0;
-        rho[i] = m.density;
+        x[first + k] = points[k];
+        bid[first + k] = static_cast<std::int32_t>(bi);
+        mid[first + k] = body.material;
       }
-    }
-    if (v.has("boundary")) {  // walls, and blocks that the fluid sees
-      auto boundary = registry_.create_as<Boundary>("boundary", v.model_name("boundary"), v.model_params("boundary"));
-      body.boundary = boundary.get();
-      models_.push_back(std::move(boundary));
-    }
-    if (v.has("contact")) {
-      auto contact = registry_.create("contact", v.model_name("contact"), v.model_params("contact"));
-      body.contact = contact.get();
-      models_.push_back(std::move(contact));
+      auto fill = [&](auto field, auto value) { std::fill(field.begin() + first, field.end(), value); };
+      if (velocity) fill(fluid.vector("velocity"), v.vector("velocity"));
+      if (density) fill(fluid.scalar("density"), m.density);
+      if (pressure) fill(fluid.scalar("pressure"), 0.0);
+      if (mass) fill(fluid.scalar("mass"), m.density * std::pow(body.dp, world_.dim));
     }
   }
-  start_hydrostatic(world_, bodies);
+  if (density && pressure) start_hydrostatic(world_, bodies);
+  world_.refresh_material_index();
   for (std::size_t bi = 0; bi < world_.bodies.size(); ++bi)
     if (world_.bodies[bi].boundary) {
       const int index = static_cast<int>(bi);
@@ -226,14 +232,15 @@ void Simulation::build_stages() {
     stages_.push_back(registry_.create_as<Stage>("stage", names[i], params[i]));
     stage_names_.push_back(names[i]);
   }
-  check_stage_parts();
+  fill_bodies(check_stage_parts());
   for (auto& stage : stages_) stage->setup(world_);
   if (!world_.pair_terms.empty() && !world_.pair_terms_run)
     s.fail("pair_terms", "no stage of the pipeline runs pair terms; they act in a \"wcsph\" stage");
 }
 
-// Every part a stage needs is built by a stage before it, and no part twice.
-void Simulation::check_stage_parts() const {
+// Every part a stage needs is built by a stage before it, and no part twice;
+// returns the body fields the stages read.
+std::vector<std::string> Simulation::check_stage_parts() const {
   const auto& entries = scene_.values.objects("pipeline");
   std::vector<StageParts> parts;
   for (const auto& stage : stages_) parts.push_back(stage->parts(world_));
@@ -257,6 +264,15 @@ void Simulation::check_stage_parts() const {
         entries[i].fail("", "stage '" + stage_names_[i] + "' builds the " + part + " that " + where(earlier) +
                                 " already builds; list only one of them");
   }
+  std::vector<std::string> fields;
+  for (std::size_t i = 0; i < stages_.size(); ++i)
+    for (const std::string& name : parts[i].body_fields) {
+      if (std::ranges::none_of(kBodyFields, [&](const FieldInfo& f) { return f.name == name; }))
+        entries[i].fail("", "stage '" + stage_names_[i] + "' reads the start state of the body field '" + name +
+                                "', which bodies do not give; they give velocity, density, pressure and mass");
+      if (std::ranges::find(fields, name) == fields.end()) fields.push_back(name);
+    }
+  return fields;
 }
 
 void Simulation::build_writers() {

@@ -132,6 +132,7 @@ void DepthIntegratedSph::setup(World& world) {
   ParticleStore& s = world.fluid;
   s.require({"velocity", FieldType::vector, "m/s", true, true});
   s.require({"volume", FieldType::scalar, "m^3", true, true});
+  s.require({"mass", FieldType::scalar, "kg", true, true});
   s.require({"depth", FieldType::scalar, "m", true, true});
   s.require({"smoothing_length", FieldType::scalar, "m", false, true});
   s.require({"speed", FieldType::scalar, "m/s", true, false});
@@ -212,12 +213,10 @@ void DepthIntegratedSph::setup(World& world) {
     auto mass = s.scalar("mass");
     auto vel = s.vector("velocity");
     auto mat = s.material();
-    const bool has_mass = s.has("mass");
     for (std::size_t i = 0; i < s.size(); ++i) {
-      if (has_mass) s.scalar("mass")[i] = world.materials[mat[i]].density * vol[i];
+      mass[i] = world.materials[mat[i]].density * vol[i];
       vel[i].z = 0.0;
     }
-    (void)mass;
     auto l = s.scalar("smoothing_length");
     std::fill(l.begin(), l.end(), world.h);
   }

@@ -80,6 +80,7 @@ class DepthIntegratedSph final : public Stage {
   static ParamSet describe();
   explicit DepthIntegratedSph(const ParamValues& v);
 
+  StageParts parts(const World&) const override { return {{}, {}, {"velocity"}}; }  // the bodies' start velocity
   void setup(World& world) override;
   double stable_time_step(World& world) override;
   void advance(World& world, double dt) override;

@@ -213,9 +213,10 @@ void WcsphStage::setup(World& world) {
 }
 
 StageParts WcsphStage::parts(const World& world) const {
+  StageParts parts{{}, {}, {"velocity", "density", "pressure", "mass"}};
   for (const Body& body : world.bodies)
-    if (body.kind == BodyKind::block && body.boundary) return {{}, {"blocks"}};
-  return {};
+    if (body.kind == BodyKind::block && body.boundary) parts.needs = {"blocks"};
+  return parts;
 }
 
 ViscositySettings WcsphStage::viscosity_settings(const World& world) const {

@@ -62,6 +62,10 @@ TEST(Cli, ValidatePlanAndDocOnAGoodScene) {
   EXPECT_NE(p.output.find("1. ballistic"), std::string::npos) << p.output;
   EXPECT_NE(p.output.find("pass 1: kick-drift over fluid particles"), std::string::npos) << p.output;
   EXPECT_NE(p.output.find("talus-test-good 1.2.3"), std::string::npos) << p.output;
+  // Only the start state the stage reads (velocity) is allocated, no SPH fields.
+  EXPECT_NE(p.output.find("fields allocated (fluid): id, body, material, position, velocity, acceleration\n"),
+            std::string::npos)
+      << p.output;
   const auto d = run_command(exe + " doc ballistic");
   EXPECT_EQ(d.exit_code, 0);
   EXPECT_NE(d.output.find("dt"), std::string::npos);
@@ -193,6 +197,34 @@ TEST(Cli, NonFiniteValueStopsWithParticleBodyAndPosition) {
   EXPECT_NE(r.output.find("of body 'drop' at ("), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("has non-finite velocity"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("last good output:"), std::string::npos) << r.output;
+}
+
+// The host allocated wcsph's density and pressure for run-out scenes too;
+// now only the start state the pipeline's stages read.
+TEST(Cli, RunoutSceneHasNoSphFields) {
+  const auto p = run_command(exe + " plan " + std::string(TALUS_SOURCE_DIR) + "/share/scenes/runout_valley.json");
+  EXPECT_EQ(p.exit_code, 0) << p.output;
+  const auto at = p.output.find("fields allocated (fluid): ");
+  ASSERT_NE(at, std::string::npos) << p.output;
+  const std::string fields = p.output.substr(at, p.output.find('\n', at) - at);
+  EXPECT_NE(fields.find(" velocity,"), std::string::npos) << fields;
+  EXPECT_NE(fields.find(" mass,"), std::string::npos) << fields;
+  EXPECT_EQ(fields.find("pressure"), std::string::npos) << fields;
+  EXPECT_EQ(fields.find("density"), std::string::npos) << fields;
+}
+
+// A stage that reads a start state bodies do not give is refused at its pipeline entry.
+TEST(Cli, StageReadingAnUnknownBodyFieldIsRefused) {
+  const std::string scene = fresh_dir("body_field") + "_scene.json";
+  std::string text = read_file(scenes + "/ballistic.json");
+  text.replace(text.find("\"dt\": 0.001"), 11, "\"dt\": 0.001, \"body_field\": \"temperature\"");
+  talus::test::write_file(scene, text);
+  const auto r = run_command(exe + " validate " + scene);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(scene + ": /pipeline/0: stage 'ballistic' reads the start state of the body field "
+                                  "'temperature', which bodies do not give"),
+            std::string::npos)
+      << r.output;
 }
 
 TEST(Cli, UnwritableOutputFolderIsARunError) {

@@ -26,9 +26,16 @@ struct StagePlan {
 // from the stages before it, by name ("blocks": the DDA block set,
 // World::blocks). The host checks the pipeline against them before any stage
 // sets up, and refuses an order that cannot work with the stage to list first.
+//
+// `body_fields` are the fluid fields whose start state the stage reads from
+// the scene's fluid bodies: "velocity" (the body's), "density" and
+// "pressure" (the material's rest state, or hydrostatic), "mass"
+// (rho0 dp^dim). The host allocates and fills only the ones some stage reads
+// (a run-out scene has no pressure); a stage registers its other fields itself.
 struct StageParts {
   std::vector<std::string> provides;
   std::vector<std::string> needs;
+  std::vector<std::string> body_fields;
 };
 
 class TALUS_API Stage : public Model {

@@ -2,6 +2,7 @@
 // v += g dt) with a fixed stable step. It exercises the host's time loop,
 // outputs, checkpoints and signal handling without any SPH physics.
 #include <chrono>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -18,12 +19,14 @@ class Ballistic final : public talus::Stage {
     p.real("sleep").unit("s").min(0.0).default_value(0.0).doc("wall time to sleep per step (signal tests)");
     p.real("nan_at").unit("s").min(0.0).optional().doc("make particle 0's velocity NaN at this time (error tests)");
     p.real("scratch_bytes").min(0.0).default_value(0.0).doc("bytes of scratch to allocate at setup (out-of-memory tests)");
+    p.string("body_field").default_value("velocity").doc("the start-state field it reads from the bodies (host tests)");
     return p;
   }
   explicit Ballistic(const talus::ParamValues& v)
       : dt_(v.real("dt")), sleep_(v.real("sleep")), nan_at_(v.has("nan_at") ? v.real("nan_at") : -1.0),
-        scratch_bytes_(v.real("scratch_bytes")) {}
+        scratch_bytes_(v.real("scratch_bytes")), body_field_(v.string("body_field")) {}
 
+  talus::StageParts parts(const talus::World&) const override { return {{}, {}, {body_field_}}; }
   void setup(talus::World& world) override {
     world.fluid.require({"acceleration", talus::FieldType::vector, "m/s^2", true, false});
     if (scratch_bytes_ > 0) scratch_.resize(static_cast<std::size_t>(scratch_bytes_));
@@ -50,6 +53,7 @@ class Ballistic final : public talus::Stage {
 
  private:
   double dt_, sleep_, nan_at_, scratch_bytes_;
+  std::string body_field_;
   std::vector<char> scratch_;
   unsigned long long steps_ = 0;
 };
