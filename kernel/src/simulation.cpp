@@ -113,6 +113,7 @@ int Simulation::run(const RunOptions& options) {
                 scene_.path.c_str(), world_.fluid.size(), world_.boundary.size(),
                 world_.blocks ? (", " + std::to_string(world_.blocks->size()) + " blocks").c_str() : "",
                 fixed(world_.end_time).c_str(), output_directory_.c_str());
+  print_new_warnings();
 
   try {
     while (world_.time < world_.end_time * (1.0 - 1e-12) && world_.step < max_steps) {
@@ -129,6 +130,7 @@ int Simulation::run(const RunOptions& options) {
       if (world_.step % resort_every_ == 0) resort_particles();
       check_finite();
       write_due_outputs(false);
+      print_new_warnings();
       if ((checkpoint_every > 0 && world_.time >= next_checkpoint_time - time_eps) ||
           (checkpoint_minutes > 0 && progress.elapsed() - wall_at_last_checkpoint >= 60.0 * checkpoint_minutes)) {
         checkpoint();
@@ -146,6 +148,7 @@ int Simulation::run(const RunOptions& options) {
       if (const int sig = stop_signals.caught()) {
         progress.finish();
         write_due_outputs(true);
+        print_new_warnings();
         const std::string path = checkpoint();
         for (auto& w : writers_) w.writer->close(world_);
         // The resume command repeats the options that shape the run (threads: the same result bit for bit).
@@ -160,6 +163,7 @@ int Simulation::run(const RunOptions& options) {
     }
   } catch (const RunError&) {
     progress.finish();
+    print_new_warnings();
     for (auto& w : writers_) {
       try {
         w.writer->close(world_);
@@ -171,6 +175,7 @@ int Simulation::run(const RunOptions& options) {
   progress.finish();
   if (last_output_time_ < world_.time) write_due_outputs(true);
   for (auto& w : writers_) w.writer->close(world_);
+  print_new_warnings();
   std::vector<std::string> finish_lines;
   for (auto& stage : stages_)
     for (auto& line : stage->finish(world_, output_directory_)) finish_lines.push_back(line);

@@ -73,6 +73,7 @@ class TALUS_API Simulation {
   std::vector<std::string> check_stage_parts() const;  // the pipeline against the stages' StageParts
   void build_writers();
   void remove_escaped_particles();
+  void print_new_warnings();
   void resort_particles();
   void check_finite() const;
   void write_due_outputs(bool force);
@@ -90,6 +91,8 @@ class TALUS_API Simulation {
   double last_output_time_ = -1.0;
   std::string output_directory_;
   std::vector<std::uint8_t> escaped_;  // scratch, reused
+  std::vector<std::uint8_t> removal_warned_;  // per body: its first removal was reported
+  std::size_t warnings_printed_ = 0;
   NeighbourGrid resort_cells_;         // reused by every re-sort: no allocation once sized
 };
 

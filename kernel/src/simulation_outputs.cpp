@@ -1,7 +1,9 @@
 // The writers' output schedule and the checkpoint files: what the writers
-// have written, writing what is due, and saving and restoring the run state.
+// have written, writing what is due, the run's warnings as they come, and
+// saving and restoring the run state.
 #include "simulation.hpp"
 
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -20,6 +22,13 @@ std::vector<std::string> Simulation::output_files() const {
   for (const auto& w : writers_)
     for (auto& f : w.writer->files()) files.push_back(f);
   return files;
+}
+
+// On stderr, so that --quiet and a redirected log keep them.
+void Simulation::print_new_warnings() {
+  const auto& all = world_.warnings.all();
+  for (; warnings_printed_ < all.size(); ++warnings_printed_)
+    std::fprintf(stderr, "talus: warning: %s\n", all[warnings_printed_].c_str());
 }
 
 std::string Simulation::last_output() const {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <span>
 #include <sstream>
+#include <string>
 
 #include "number_text.hpp"
 #include "talus/error.hpp"
@@ -32,6 +33,18 @@ void Simulation::remove_escaped_particles() {
     count += escaped_[i];
   }
   if (count == 0) return;
+  // The first particle of each body to leave, with where and when.
+  removal_warned_.resize(world_.bodies.size(), 0);
+  const auto body = fluid.body();
+  const auto id = fluid.ids();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!escaped_[i] || removal_warned_[body[i]]) continue;
+    removal_warned_[body[i]] = 1;
+    world_.warnings.add("step " + std::to_string(world_.step) + " (t = " + fixed(world_.time, 6) +
+                        " s): fluid particle " + std::to_string(id[i]) + " of body '" + world_.bodies[body[i]].name +
+                        "' left the domain at " + vec_text(x[i], world_.dim) +
+                        " and was removed (an open face, or a leak through a wall); the summary counts all removals");
+  }
   world_.removed += fluid.remove_if(escaped_);
   world_.refresh_material_index();
 }

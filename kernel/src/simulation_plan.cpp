@@ -68,6 +68,7 @@ void Simulation::print_plan(std::ostream& out) const {
     for (const auto& f : world_.boundary.fields()) fields.push_back(f.name);
     out << "fields allocated (walls): " << text::join(fields) << "\n";
   }
+  for (const auto& warning : world_.warnings.all()) out << "warning: " << warning << "\n";
   out << "outputs:\n";
   for (const auto& w : writers_)
     out << "  " << w.type << "  every "

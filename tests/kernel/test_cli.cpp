@@ -2,6 +2,8 @@
 // messages, nothing written on bad input, restart bit for bit, SIGINT.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <signal.h>
 #include <unistd.h>
 
@@ -225,6 +227,29 @@ TEST(Cli, StageReadingAnUnknownBodyFieldIsRefused) {
                                   "'temperature', which bodies do not give"),
             std::string::npos)
       << r.output;
+}
+
+// A particle that leaves the domain is a warning with where and when, on
+// stderr as it happens (also with --quiet), and first in the summary.
+TEST(Cli, ParticlesLeavingTheDomainAreWarnedAboutOncePerBody) {
+  const std::string dir = fresh_dir("leave");
+  const std::string scene = dir + "_scene.json";
+  std::string text = read_file(scenes + "/ballistic.json");
+  text.replace(text.find("\"end\": 0.1"), 10, "\"end\": 1.6");
+  talus::test::write_file(scene, text);
+  const auto quiet = run_command(exe + " run " + scene + " --quiet --out " + dir + " --summary " + dir + ".json");
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.output;
+  // The drop (lowest row at y = 0.025, 1 m/s up, g = 9.81 down) reaches the floor y = -10 after 1.54 s.
+  EXPECT_NE(quiet.output.find("talus: warning: step "), std::string::npos) << quiet.output;
+  EXPECT_NE(quiet.output.find(" of body 'drop' left the domain at ("), std::string::npos) << quiet.output;
+  EXPECT_EQ(quiet.output.find("talus: warning:"), quiet.output.rfind("talus: warning:")) << quiet.output;
+  const auto summary = nlohmann::json::parse(read_file(dir + ".json"));
+  ASSERT_EQ(summary["warnings"].size(), 1u) << summary.dump();
+  EXPECT_GT(summary["removed"].get<int>(), 0);
+  const auto loud = run_command(exe + " run " + scene + " --out " + dir + "_loud");
+  const auto done = loud.output.find("talus: done:");
+  ASSERT_NE(done, std::string::npos) << loud.output;
+  EXPECT_NE(loud.output.find("       warning: step ", done), std::string::npos) << loud.output;
 }
 
 TEST(Cli, UnwritableOutputFolderIsARunError) {

@@ -261,6 +261,8 @@ int validate(const Args& args) {
   std::printf("%s: valid (%zu fluid particles, %zu wall particles, %zu stages)\n", path.c_str(),
               simulation.world().fluid.size(), simulation.world().boundary.size(),
               simulation.scene().values.model_names("pipeline").size());
+  for (const auto& warning : simulation.world().warnings.all())
+    std::fprintf(stderr, "talus: warning: %s\n", warning.c_str());
   return 0;
 }
 

@@ -15,6 +15,7 @@
 #include "talus/params.hpp"
 #include "talus/particles.hpp"
 #include "talus/vec3.hpp"
+#include "talus/warnings.hpp"
 
 namespace talus {
 
@@ -81,6 +82,8 @@ class TALUS_API World {
   std::uint64_t step = 0;
   double end_time = 0.0;
   std::uint64_t removed = 0;  // fluid particles that left the domain so far
+  // Writers see a const World and may still warn: the log is not state.
+  mutable WarningLog warnings;
 
   // Indices of the fluid particles of material m; valid until the store is
   // re-sorted or particles are removed (the host refreshes them then).
