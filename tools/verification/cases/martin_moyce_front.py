@@ -32,10 +32,11 @@ not particular to this model:
 The likely cause is the release in the experiment (the barrier's removal takes a few milliseconds). One check
 does not support it: fitted to each column size alone (a/50) the best shift is 0.235 for a = 1.125 in and 0.265
 for a = 2.25 in, where a release of fixed duration would give the small column a shift sqrt(2) times larger
-(with 4-5 points per size a weak test). Whatever its cause, converged solutions share the lead, so the error
-below compares on the experiment's clock, T_sim + 0.175, using the published correction as it stands. It is not
-fitted here: the shift that would best fit this model is 0.20-0.24, and it leaves 1.6-1.8 %. The uncorrected
-deviation and that best shift are reported as a gate's diagnostic, so a change in the lead stays visible.
+(with 4-5 points per size a weak test). No primary source prescribes a shift (the 0.175 is another project's
+example), so the error is taken on the raw clock, T_sim against T_exp, and the case is a known deviation: the raw
+error exceeds the experimental spread. The figure on Lethe's shifted clock (T_sim + 0.175) and the shift that
+would fit best are reported beside it as a gate's diagnostic, labelled, so that a change in the lead stays
+visible; neither is gated on.
 
 Against measured data the error does not have to fall with resolution: once the discretisation error is below the
 experimental scatter (the two column sizes differ by ~7 %), what is left is the model-experiment difference
@@ -58,11 +59,15 @@ LADDER = [0.005, 0.004, 0.0025, 0.002]
 # The two measured column sizes differ by about 7 %: that spread is the tolerance.
 TOLERANCE = {dp: 0.07 for dp in LADDER}
 CONVERGES = False
-# The lag of the measured time origin behind an instantaneous release, in T (module docstring): Lethe's published
-# correction for this experiment, not a value fitted to this model.
-RELEASE_OFFSET = 0.175
-ERROR_LABEL = ("mean |Z_sim - Z_exp| / Z_exp over the measured points with T <= 3 (both column sizes), "
-               f"simulated T + {RELEASE_OFFSET} on the experiment's clock")
+# Lethe's correction of the time origin for this experiment (module docstring): reported, not gated on.
+LETHE_SHIFT = 0.175
+ERROR_LABEL = ("mean |Z_sim - Z_exp| / Z_exp over the measured points with T <= 3 (both column sizes), on the raw "
+               "clock (no time shift)")
+KNOWN_DEVIATION = (
+    "On the raw clock the simulated front leads the measured one by Delta T ~ 0.2 from the first measured point on "
+    "(module docstring: converged Navier-Stokes solutions share the lead), so the error (8-14 % over the ladder) "
+    "exceeds the 7 % spread of the two column sizes. Shifting the clock would pass, but no primary source gives the "
+    "shift; issue 22 stays open on it, to report the raw-clock error with mDBC and no-slip walls.")
 REFERENCE = "Martin & Moyce (1952) Fig. 3, n^2 = 2, a = 1.125 in and 2.25 in (share/validation-data)"
 A, G = 0.1, 9.81
 OPTIONS = {"density_diffusion": ["fourtakas", "molteni"]}
@@ -146,7 +151,7 @@ def deviation(T, Z, shift, data):
 
 
 def error(run):
-    return deviation(*front_history(run), RELEASE_OFFSET, measured())
+    return deviation(*front_history(run), 0.0, measured())
 
 
 def slope(T, Z, t0=1.5, t1=3.0):
@@ -161,14 +166,16 @@ def gates(run):
     ritter = 1.0 + 2.0 * math.sqrt(G * 2 * A) * t / A
     speeds = [slope(*measured_series(name)) for name in MEASURED]
     speed = slope(T, Z)
-    # Diagnostic: the deviation without the release correction, and the constant shift that would fit best.
+    # Diagnostic, not gated on: the deviation on Lethe's shifted clock, and the constant shift that would fit best.
     data = measured()
     shifts = np.arange(0.0, 0.4001, 0.01)
     left = [deviation(T, Z, s, data) for s in shifts]
     best = int(np.argmin(left))
+    lethe = deviation(T, Z, LETHE_SHIFT, data)
     return [("never faster than Ritter's front 2 sqrt(gH)", bool(np.all(Z <= ritter + 1e-9)),
              f"max Z - Z_Ritter {np.max(Z - ritter):.3g}"),
             ("front speed dZ/dT over 1.5 <= T <= 3 within the measured speeds +-7 %",
              min(speeds) * 0.93 <= speed <= max(speeds) * 1.07,
-             f"{speed:.3f}, measured {speeds[0]:.3f} and {speeds[1]:.3f}; uncorrected deviation {left[0]:.1%}; "
-             f"best constant shift Delta T = {shifts[best]:.2f} leaves {left[best]:.1%}")]
+             f"{speed:.3f}, measured {speeds[0]:.3f} and {speeds[1]:.3f}; shifted clock T + {LETHE_SHIFT} "
+             f"(Lethe, not gated): deviation {lethe:.1%}; best constant shift Delta T = {shifts[best]:.2f} leaves "
+             f"{left[best]:.1%}")]
