@@ -49,7 +49,13 @@ ParamSet ProbesWriter::describe() {
       "fields at the points: a scalar, a vector (all components), NAME_x/_y/_z or NAME_mag; default pressure, "
       "velocity");
   p.vector_list("gauges").optional().unit("m").doc(
-      "wave gauges: a point on each vertical line (its vertical coordinate is ignored); column NAME_elevation");
+      "wave gauges: a point on each vertical line (its vertical coordinate is ignored); column NAME_elevation, "
+      "the free surface's coordinate along the vertical, found scanning down from the side gravity points away "
+      "from (NaN, with a warning, where the line is dry)");
+  p.choice("vertical", {"x", "y", "z"})
+      .optional()
+      .doc("the axis the gauges measure along; default the axis gravity points along (then required when gravity "
+           "is zero or along no axis)");
   p.string_list("gauge_names").optional().doc("column prefixes of the gauges, one per gauge; default G1, G2, ...");
   p.real("gauge_step")
       .unit("m")
@@ -246,8 +252,9 @@ std::string ProbesWriter::comment_lines(const OutputContext& context, const Worl
            format_real(world.kernel.support_radius()) + " m\n";
   }
   if (!gauges_.empty()) {
-    out += "# gauges (free-surface elevation along the " + std::string(kAxis[vertical_]) +
-           " axis where sum_j V_j W = " + format_real(gauge_threshold_) + ", step " + format_real(gauge_step_) + " m):";
+    out += "# gauges (free-surface elevation along the " + std::string(kAxis[vertical_]) + " axis, up " +
+           (up_ > 0 ? "+" : "-") + kAxis[vertical_] + ", where sum_j V_j W = " + format_real(gauge_threshold_) +
+           ", step " + format_real(gauge_step_) + " m):";
     for (const auto& g : gauges_) out += " " + g.name + "=" + point_text(g.at, world.dim);
     out += "\n";
   }
@@ -302,6 +309,33 @@ std::size_t ProbesWriter::resume_bytes(const std::string& header, std::uint64_t 
 
 // A fresh writer from the same parameters does the work of open() short of
 // the file, so the check leaves this one as it was.
+// The gauges' vertical: the scene's "vertical", else the axis gravity lies
+// along; up is against gravity (+axis where gravity has no part along it).
+void ProbesWriter::choose_vertical(const World& world) {
+  const Vec3 g = world.gravity;
+  int along = -1, axes = 0;
+  for (int a = 0; a < world.dim; ++a)
+    if (g[a] != 0.0) {
+      along = a;
+      ++axes;
+    }
+  if (params_.has("vertical")) {
+    vertical_ = params_.string("vertical")[0] - 'x';
+    if (vertical_ >= world.dim)
+      params_.fail("vertical", params_.string("vertical") + " is not an axis of a " + std::to_string(world.dim) +
+                                   "D domain");
+  } else if (axes == 1) {
+    vertical_ = along;
+  } else {
+    vertical_ = world.dim - 1;
+    if (!gauges_.empty())
+      params_.fail("gauges", "gravity " + point_text(g, world.dim) +
+                                 " points along no axis, so the gauges have no vertical; give \"vertical\": the axis "
+                                 "they measure along");
+  }
+  up_ = g[vertical_] > 0.0 ? -1.0 : 1.0;
+}
+
 void ProbesWriter::check(const World& world) const { ProbesWriter(params_).prepare(world); }
 
 void ProbesWriter::open(const OutputContext& context, const World& world) {
@@ -321,7 +355,7 @@ void ProbesWriter::open(const OutputContext& context, const World& world) {
 }
 
 void ProbesWriter::prepare(const World& world) {
-  vertical_ = world.dim - 1;
+  choose_vertical(world);
   wall_bodies_.clear();
   if (given_strings(params_, "wall_forces")) {
     for (const auto& name : params_.strings("wall_forces")) {
@@ -563,9 +597,18 @@ void ProbesWriter::write(const World& world) {
       }
     }
   }
-  for (const auto& g : gauges_)
-    put(surface_elevation(sampler_, g.at, vertical_, world.lo[vertical_], world.hi[vertical_], gauge_step_,
-                          gauge_threshold_));
+  const double top = up_ > 0 ? world.hi[vertical_] : world.lo[vertical_];
+  const double bottom = up_ > 0 ? world.lo[vertical_] : world.hi[vertical_];
+  for (auto& g : gauges_) {
+    const double elevation = surface_elevation(sampler_, g.at, vertical_, bottom, top, gauge_step_, gauge_threshold_);
+    if (std::isnan(elevation) && !g.warned) {
+      g.warned = true;
+      world.warnings.add("probes: gauge '" + g.name + "' at " + point_text(g.at, world.dim) + " finds no free surface "
+                         "along " + kAxis[vertical_] + " at t = " + format_real(world.time) +
+                         " s (the line is dry): its column reads NaN while it stays dry");
+    }
+    put(elevation);
+  }
   for (auto q : integrals_) put(integral(q, world));
   for (int body : wall_bodies_) {
     const Vec3 f = wall_force(body, world);

@@ -59,6 +59,7 @@ class ProbesWriter final : public Writer {
   struct Gauge {
     std::string name;
     Vec3 at;
+    bool warned = false;  // its dry line was reported
   };
   struct WallSensor {
     std::string name;
@@ -70,6 +71,7 @@ class ProbesWriter final : public Writer {
   // Everything open() does short of the file: resolves bodies, sensors and
   // columns against the world; throws InputError on what does not fit.
   void prepare(const World& world);
+  void choose_vertical(const World& world);
   void resolve_columns(const World& world);
   std::string comment_lines(const OutputContext& context, const World& world) const;
   // Bytes of an existing file to keep on resume (comments, header, rows up to
@@ -104,6 +106,7 @@ class ProbesWriter final : public Writer {
   std::size_t sensor_wall_size_ = 0;  // world.boundary.size() when the sensors' particles were selected
   double gauge_step_ = 0.0, gauge_threshold_ = 0.5;
   int vertical_ = 2;
+  double up_ = 1.0;  // +1: up is +vertical_ (gravity along -vertical_)
 
   std::vector<PointColumn> point_columns_;
   std::vector<std::string> names_, units_;

@@ -87,22 +87,23 @@ class SphSampler {
   std::span<const double> volume_;
 };
 
-// Free-surface elevation along the vertical line through `at` (vertical axis
-// `axis`): scanning down from `top` in steps of `step`, the highest point
-// where phi >= threshold, placed by linear interpolation of phi between the
-// first sample at or above the threshold and the one above it. NaN when
-// the whole line is dry.
+// Free-surface elevation along the line through `at` parallel to axis
+// `axis`: scanning from `top` (the side gravity points away from; above or
+// below `bottom` along the axis) towards `bottom` in steps of `step`, the
+// first point where phi >= threshold, placed by linear interpolation of phi
+// between it and the sample before. NaN when the whole line is dry.
 inline double surface_elevation(const SphSampler& sampler, Vec3 at, int axis, double bottom, double top, double step,
                                 double threshold) {
+  const double down = bottom < top ? -1.0 : 1.0;
   double above_phi = 0.0;
   for (int k = 0;; ++k) {
-    const double z = top - k * step;
-    if (z < bottom - 1e-12 * step) break;
+    const double z = top + down * k * step;
+    if (down * (z - bottom) > 1e-12 * step) break;
     at[axis] = z;
     const double phi = sampler.fill_fraction(at);
     if (phi >= threshold) {
       if (k == 0) return z;
-      return z + step * (phi - threshold) / (phi - above_phi);
+      return z - down * step * (phi - threshold) / (phi - above_phi);
     }
     above_phi = phi;
   }

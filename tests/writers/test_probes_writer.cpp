@@ -144,6 +144,68 @@ TEST(ProbesWriter, WaveGaugeFindsAFlatFreeSurface) {
   EXPECT_NEAR(csv.rows[0][column(csv, "left_elevation")], depth, 0.1 * dp);
 }
 
+// The gauge's elevation of one surface along gravity: the tank of the test
+// above, with gravity along +y or along +x; elevations are coordinates.
+double gauge_elevation(const std::string& name, Vec3 gravity, Vec3 lattice_lo, int nx, int ny, Vec3 hi,
+                       const std::string& gauges) {
+  TempDir dir(name);
+  World w;
+  w.lo = {0, 0, 0};
+  w.hi = hi;
+  w.gravity = gravity;
+  test::fill_lattice(w, 2, lattice_lo, nx, ny, 1, 0.01);
+  writers::ProbesWriter writer(params_from_json(writers::ProbesWriter::describe(), gauges, 2));
+  writer.open(test::context_for(dir.str()), w);
+  writer.write(w);
+  const Csv csv = read_csv(dir.file("scene_probes.csv"));
+  return csv.rows.at(0).at(column(csv, "G1_elevation"));
+}
+
+// Gauges measure along gravity, from the side it points away from: a tank
+// lying along +x (surface at x = 0.2, water beyond) reads what the upright
+// tank reads, mirrored, to round-off.
+TEST(ProbesWriter, WaveGaugeMeasuresAlongGravity) {
+  const double dp = 0.01;
+  const double upright = gauge_elevation("probes-up", {0, -9.81, 0}, {0, 0, 0}, 20, 10, {0.2, 0.3, 0},
+                                         R"({"gauges": [[0.1, 0.0]]})");
+  const double lying = gauge_elevation("probes-lying", {9.81, 0, 0}, {0.2, 0, 0}, 10, 20, {0.3, 0.2, 0},
+                                       R"({"gauges": [[0.0, 0.1]]})");
+  EXPECT_NEAR(upright, 0.1, 0.1 * dp);
+  EXPECT_NEAR(0.2 - lying, upright - 0.1, 1e-9 * dp);
+  // Gravity along no axis needs the scene to say which axis is vertical.
+  EXPECT_THROW(gauge_elevation("probes-oblique", {3.0, -9.0, 0}, {0, 0, 0}, 20, 10, {0.2, 0.3, 0},
+                               R"({"gauges": [[0.1, 0.0]]})"),
+               InputError);
+  EXPECT_EQ(gauge_elevation("probes-stated", {3.0, -9.0, 0}, {0, 0, 0}, 20, 10, {0.2, 0.3, 0},
+                            R"({"gauges": [[0.1, 0.0]], "vertical": "y"})"),
+            upright);
+}
+
+// A gauge over a dry line reads NaN and says so, once.
+TEST(ProbesWriter, DryGaugeWarnsOnce) {
+  TempDir dir("probes-dry");
+  World w;
+  w.lo = {0, 0, 0};
+  w.hi = {0.4, 0.3, 0};
+  w.gravity = {0, -9.81, 0};
+  test::fill_lattice(w, 2, w.lo, 20, 10, 1, 0.01);
+  const char* gauges = R"({"gauges": [[0.1, 0.0], [0.35, 0.0]], "gauge_names": ["wet", "dry"]})";
+  writers::ProbesWriter writer(params_from_json(writers::ProbesWriter::describe(), gauges, 2));
+  writer.open(test::context_for(dir.str()), w);
+  writer.write(w);
+  w.time = 0.5;
+  w.step = 1;
+  writer.write(w);
+  const Csv csv = read_csv(dir.file("scene_probes.csv"));
+  ASSERT_EQ(csv.rows.size(), 2u);
+  EXPECT_TRUE(std::isnan(csv.rows[1][column(csv, "dry_elevation")]));
+  EXPECT_FALSE(std::isnan(csv.rows[1][column(csv, "wet_elevation")]));
+  ASSERT_EQ(w.warnings.all().size(), 1u);
+  EXPECT_NE(w.warnings.all()[0].find("gauge 'dry' at (0.35, 0) finds no free surface along y at t = 0 s"),
+            std::string::npos)
+      << w.warnings.all()[0];
+}
+
 TEST(ProbesWriter, IntegralsAndLayout) {
   TempDir dir("probes-integrals");
   World w;
