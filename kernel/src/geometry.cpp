@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 
 #include "shape_mesh.hpp"
@@ -38,7 +39,10 @@ void max_above_min(const ParamValues& v, Diagnostics& d) {
 void declare_shape(ParamSet& body) {
   auto b = body.one_of("shape").doc("the region the body occupies (a fluid body's must lie in the domain)");
 
-  ParamSet box{"box", "axis-aligned box"};
+  ParamSet box{"box",
+               "axis-aligned box, filled with round(L/dp) particles per axis half a spacing inside its faces (where "
+               "L is not a whole number of spacings the spacing along that axis becomes L/round(L/dp), and the "
+               "run says so); at least two spacings along every axis"};
   box.vector("min").unit("m").doc("lower corner");
   box.vector("max").unit("m").doc("upper corner");
   box.check(max_above_min);
@@ -69,7 +73,9 @@ void declare_shape(ParamSet& body) {
   half.vector("normal").doc("outward normal: the body is on the side opposite to it");
   b.alternative("half_space", half);
 
-  ParamSet walls{"box_walls", "the walls of a box-shaped tank, outside the box, some faces open"};
+  ParamSet walls{"box_walls",
+                 "the walls of a box-shaped tank, outside the box, some faces open: the box's lattice (as for a box) "
+                 "continued across its closed faces, so the walls lie on the faces whichever are open"};
   walls.vector("min").unit("m").doc("inner lower corner");
   walls.vector("max").unit("m").doc("inner upper corner");
   walls.string_list("open", {"-x", "+x", "-y", "+y", "-z", "+z"}).optional().doc("faces without a wall (default none)");
@@ -117,17 +123,31 @@ long long points_within(double distance, double dp) {
   return n < 1e18 ? static_cast<long long>(n) : 1'000'000'000'000'000'000LL;
 }
 
-// Lattice points p = lo + (i + 1/2) dp within [lo, hi] that classify keeps.
-// Skipping makes the work grow with the points kept and the rows, not with
-// the volume of [lo, hi]: a wall around a large tank costs its surface.
-std::vector<Vec3> lattice(const Vec3& lo, const Vec3& hi, double dp, int dim, const Classify& classify) {
+// A length for a message: 6 significant digits (0.461 - 0.3 reads 0.161).
+std::string digits(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", x);
+  return text;
+}
+
+// round(L / dp) as a count, within what a long long and the resource check allow.
+long long spacings_in(double length, double dp) {
+  const double n = std::round(length / dp);
+  return n > 0.0 ? static_cast<long long>(std::min(n, 1e15)) : 0;
+}
+
+// Lattice points p = lo + (i + 1/2) s within [lo, hi] that classify keeps,
+// s the spacing per axis. Skipping makes the work grow with the points kept
+// and the rows, not with the volume of [lo, hi]: a wall around a large tank
+// costs its surface.
+std::vector<Vec3> lattice(const Vec3& lo, const Vec3& hi, const Vec3& s, int dim, const Classify& classify) {
   long long n[3] = {1, 1, 1};
-  for (int a = 0; a < dim; ++a) n[a] = std::max(0LL, std::llround((hi[a] - lo[a]) / dp));
+  for (int a = 0; a < dim; ++a) n[a] = spacings_in(hi[a] - lo[a], s[a]);
   std::vector<Vec3> out;
   for (long long k = 0; k < n[2]; ++k)
     for (long long j = 0; j < n[1]; ++j)
       for (long long i = 0; i < n[0]; ++i) {
-        const Vec3 p{lo.x + (i + 0.5) * dp, lo.y + (j + 0.5) * dp, dim == 3 ? lo.z + (k + 0.5) * dp : 0.0};
+        const Vec3 p{lo.x + (i + 0.5) * s.x, lo.y + (j + 0.5) * s.y, dim == 3 ? lo.z + (k + 0.5) * s.z : 0.0};
         const Verdict v = classify(p);
         if (v.keep)
           out.push_back(p);
@@ -137,55 +157,92 @@ std::vector<Vec3> lattice(const Vec3& lo, const Vec3& hi, double dp, int dim, co
   return out;
 }
 
-// Indices i of the lattice points origin + (i + 1/2) dp, 0 <= i < n, that lie in [lo, hi]: first <= i < end.
-struct IndexRange {
-  long long first = 0, end = 1;
-  bool contains(long long i) const { return i >= first && i < end; }
+// A box's lattice: round(L / dp) particles per axis at spacing L / count, the
+// first and last layers half a spacing inside the faces (dp itself where L is
+// a whole number of spacings, to round-off). Refuses a box under two spacings
+// along an axis unless it is exactly one (a column of a staircase): a single
+// particle could not keep both faces without a spacing far from dp.
+struct BoxLattice {
+  long long n[3] = {1, 1, 1};
+  Vec3 spacing, origin;  // points origin + (i + 1/2) spacing, 0 <= i < n, per axis
+  bool open_end[3] = {false, false, false};  // box_walls: the open face lies off the box's, within dp/2
 };
 
-IndexRange inside_indices(double origin, double lo, double hi, double dp, long long n) {
-  auto at = [&](long long i) { return origin + (i + 0.5) * dp; };
-  const double nd = static_cast<double>(n);
-  long long first = static_cast<long long>(std::clamp(std::ceil((lo - origin) / dp - 0.5), 0.0, nd));
-  // From the estimate, moved by the points' own arithmetic so that the range matches p < lo and p > hi exactly.
-  while (first > 0 && at(first - 1) >= lo) --first;
-  while (first < n && at(first) < lo) ++first;
-  long long end = static_cast<long long>(std::clamp(std::floor((hi - origin) / dp - 0.5) + 1.0, 0.0, nd));
-  end = std::max(end, first);
-  while (end > first && at(end - 1) > hi) --end;
-  while (end < n && at(end) <= hi) ++end;
-  return {first, end};
+BoxLattice box_lattice(const ParamValues& v, double dp, int dim) {
+  const Vec3 lo = v.vector("min"), hi = v.vector("max");
+  BoxLattice b;
+  b.spacing = {dp, dp, dp};
+  b.origin = lo;
+  for (int a = 0; a < dim; ++a) {
+    const double length = hi[a] - lo[a];
+    b.n[a] = spacings_in(length, dp);
+    const bool whole = std::abs(length / dp - static_cast<double>(b.n[a])) <= 1e-9 * static_cast<double>(b.n[a]);
+    if (length < 2.0 * dp && !whole)
+      v.fail("max", "the box spans " + digits(length) + " m along " + std::string(1, static_cast<char>('x' + a)) +
+                        ", less than two particle spacings (2 x " + digits(dp) +
+                        " m) and not exactly one: make it one spacing, at least two, or refine dp");
+    if (!whole) b.spacing[a] = length / static_cast<double>(b.n[a]);
+  }
+  return b;
 }
 
-// The lattice over [olo, ohi] less the points in the inner box [lo, hi]
-// (the walls of a tank), in lattice order. Rows and planes inside the box
-// are passed over by index, so a tall tank with open sides costs its walls.
-std::vector<Vec3> box_wall_lattice(const Vec3& olo, const Vec3& ohi, const Vec3& lo, const Vec3& hi, double dp, int dim) {
-  long long n[3] = {1, 1, 1};
-  IndexRange inside[3];
+bool face_closed(const ParamValues& v, int axis, char side) {
+  const auto& open = v.strings("open");
+  const std::string face{side, static_cast<char>('x' + axis)};
+  return std::find(open.begin(), open.end(), face) == open.end();
+}
+
+// The lattice of a tank (box_walls): the box's, except along an axis with one
+// face open, where the spacing stays dp from the closed face and the open end
+// falls within dp/2 of the stated one (the walls' length there is not a face).
+BoxLattice tank_lattice(const ParamValues& v, double dp, int dim) {
+  BoxLattice b = box_lattice(v, dp, dim);
+  const Vec3 hi = v.vector("max");
   for (int a = 0; a < dim; ++a) {
-    n[a] = std::max(0LL, std::llround((ohi[a] - olo[a]) / dp));
-    inside[a] = inside_indices(olo[a], lo[a], hi[a], dp, n[a]);
+    const bool minus = face_closed(v, a, '-'), plus = face_closed(v, a, '+');
+    if (minus == plus || b.spacing[a] == dp) continue;
+    b.spacing[a] = dp;
+    b.open_end[a] = true;
+    if (plus) b.origin[a] = hi[a] - static_cast<double>(b.n[a]) * dp;
   }
-  const bool rows_all_inside = inside[0].first == 0 && inside[0].end == n[0];
-  const bool planes_all_inside = rows_all_inside && inside[1].first == 0 && inside[1].end == n[1];
+  return b;
+}
+
+// The walls of a tank: `layers` layers outside each closed face of the box,
+// continuing the tank's lattice across the faces, in lattice order. Rows and
+// planes inside the box are passed over by index, so a tall tank with open
+// sides costs its walls.
+std::vector<Vec3> box_wall_lattice(const ParamValues& v, const BoxLattice& box, int layers, int dim) {
+  const Vec3& s = box.spacing;
+  Vec3 origin = box.origin;
+  long long n[3] = {1, 1, 1}, first[3] = {0, 0, 0}, end[3] = {1, 1, 1};  // box: first <= i < end
+  for (int a = 0; a < dim; ++a) {
+    const long long below = face_closed(v, a, '-') ? layers : 0, above = face_closed(v, a, '+') ? layers : 0;
+    origin[a] = box.origin[a] - static_cast<double>(below) * s[a];
+    first[a] = below;
+    end[a] = below + box.n[a];
+    n[a] = end[a] + above;
+  }
+  auto inside = [&](int a, long long i) { return i >= first[a] && i < end[a]; };
+  const bool rows_all_inside = first[0] == 0 && end[0] == n[0];
+  const bool planes_all_inside = rows_all_inside && first[1] == 0 && end[1] == n[1];
   std::vector<Vec3> out;
   for (long long k = 0; k < n[2]; ++k) {
-    const bool z_inside = inside[2].contains(k);
+    const bool z_inside = inside(2, k);
     if (z_inside && planes_all_inside) {  // no wall crosses this plane, nor the planes up to the box's far face
-      k = inside[2].end - 1;
+      k = end[2] - 1;
       continue;
     }
     for (long long j = 0; j < n[1]; ++j) {
-      const bool row_inside = z_inside && inside[1].contains(j);
+      const bool row_inside = z_inside && inside(1, j);
       if (row_inside && rows_all_inside) {
-        j = inside[1].end - 1;
+        j = end[1] - 1;
         continue;
       }
-      const double y = olo.y + (j + 0.5) * dp, z = dim == 3 ? olo.z + (k + 0.5) * dp : 0.0;
+      const double y = origin.y + (j + 0.5) * s.y, z = dim == 3 ? origin.z + (k + 0.5) * s.z : 0.0;
       for (long long i = 0; i < n[0]; ++i) {
-        if (row_inside && inside[0].contains(i)) i = inside[0].end;
-        if (i < n[0]) out.push_back({olo.x + (i + 0.5) * dp, y, z});
+        if (row_inside && inside(0, i)) i = end[0];
+        if (i < n[0]) out.push_back({origin.x + (i + 0.5) * s.x, y, z});
       }
     }
   }
@@ -298,11 +355,14 @@ Solid solid(const std::string& alt, const ParamValues& v, int dim, const Vec3& d
 
 }  // namespace
 
+Vec3 lattice_spacing(const std::string& alt, const ParamValues& v, double dp, int dim);
+
 std::vector<Vec3> fill_points(const std::string& alt, const ParamValues& v, double dp, int dim, const Vec3& dlo,
                               const Vec3& dhi) {
   if (alt == "box_walls") v.fail("", "box_walls has no inside to fill; use box for a fluid body");
   const Solid s = solid(alt, v, dim, dlo, dhi);
-  if (alt == "box") return lattice(s.lo, s.hi, dp, dim, [](const Vec3&) { return Verdict{true}; });
+  if (alt == "box")
+    return lattice(s.lo, s.hi, box_lattice(v, dp, dim).spacing, dim, [](const Vec3&) { return Verdict{true}; });
   // A half-space is what lies in the domain behind its plane; its lattice box
   // (the domain, as for any bounding box) reaches dp/2 beyond the domain.
   const bool clip_to_domain = alt == "half_space";
@@ -313,7 +373,7 @@ std::vector<Vec3> fill_points(const std::string& alt, const ParamValues& v, doub
     return false;
   };
   // Anchor at the bounding box so the lattice is the same as for a box.
-  return lattice(s.lo, s.hi + Vec3{dp, dp, dp}, dp, dim, [&](const Vec3& p) {
+  return lattice(s.lo, s.hi + Vec3{dp, dp, dp}, Vec3{dp, dp, dp}, dim, [&](const Vec3& p) {
     if (beyond_domain(p)) return Verdict{false};  // no skip: the points after it may be back in the domain
     return s.inside(p) ? Verdict{true} : Verdict{false, points_within(s.distance(p), dp)};
   });
@@ -321,28 +381,52 @@ std::vector<Vec3> fill_points(const std::string& alt, const ParamValues& v, doub
 
 std::vector<Vec3> wall_points(const std::string& alt, const ParamValues& v, double dp, int dim, int layers,
                               const Vec3& dlo, const Vec3& dhi) {
-  const double thickness = layers * dp;
-  if (alt == "box_walls") {
-    const Vec3 lo = v.vector("min"), hi = v.vector("max");
-    const auto& open = v.strings("open");
-    auto is_open = [&](const char* face) { return std::find(open.begin(), open.end(), face) != open.end(); };
-    const char* minus[3] = {"-x", "-y", "-z"};
-    const char* plus[3] = {"+x", "+y", "+z"};
-    Vec3 olo = lo, ohi = hi;
-    for (int a = 0; a < dim; ++a) {
-      if (!is_open(minus[a])) olo[a] -= thickness;
-      if (!is_open(plus[a])) ohi[a] += thickness;
-    }
-    return box_wall_lattice(olo, ohi, lo, hi, dp, dim);
-  }
+  if (alt == "box_walls") return box_wall_lattice(v, tank_lattice(v, dp, dim), layers, dim);
   // Kept: inside the solid, less than `thickness` from its surface.
+  const double thickness = layers * dp;
   const Solid s = solid(alt, v, dim, dlo, dhi);
+  const Vec3 spacing = lattice_spacing(alt, v, dp, dim);
   const Vec3 hi = alt == "box" ? s.hi : s.hi + Vec3{dp, dp, dp};
-  return lattice(s.lo, hi, dp, dim, [&](const Vec3& p) {
+  return lattice(s.lo, hi, spacing, dim, [&](const Vec3& p) {
     const double d = s.distance(p);
-    if (!s.inside(p)) return Verdict{false, points_within(d, dp)};
-    return d < thickness ? Verdict{true} : Verdict{false, points_within(d - thickness, dp)};
+    if (!s.inside(p)) return Verdict{false, points_within(d, spacing.x)};
+    return d < thickness ? Verdict{true} : Verdict{false, points_within(d - thickness, spacing.x)};
   });
+}
+
+Vec3 lattice_spacing(const std::string& alt, const ParamValues& v, double dp, int dim) {
+  if (alt == "box") return box_lattice(v, dp, dim).spacing;
+  if (alt == "box_walls") return tank_lattice(v, dp, dim).spacing;
+  return {dp, dp, dp};
+}
+
+double lattice_volume(const std::string& alt, const ParamValues& v, double dp, int dim) {
+  const Vec3 s = lattice_spacing(alt, v, dp, dim);
+  if (s == Vec3{dp, dp, dp}) return std::pow(dp, dim);
+  double volume = 1.0;
+  for (int a = 0; a < dim; ++a) volume *= s[a];
+  return volume;
+}
+
+std::string lattice_adjustment(const std::string& alt, const ParamValues& v, double dp, int dim) {
+  if (alt != "box" && alt != "box_walls") return "";
+  const BoxLattice b = alt == "box" ? box_lattice(v, dp, dim) : tank_lattice(v, dp, dim);
+  const Vec3 lo = v.vector("min"), hi = v.vector("max");
+  std::string out;
+  for (int a = 0; a < dim; ++a) {
+    const std::string axis(1, static_cast<char>('x' + a));
+    const double length = hi[a] - lo[a], n = static_cast<double>(b.n[a]);
+    std::string change;
+    if (b.spacing[a] != dp)
+      change = "its " + digits(length) + " m are " + digits(length / dp) + " spacings of " + digits(dp) + " m: " +
+               std::to_string(b.n[a]) + " particles at " + digits(b.spacing[a]) + " m";
+    else if (b.open_end[a])
+      change = "its walls end at " + digits(face_closed(v, a, '-') ? lo[a] + n * dp : hi[a] - n * dp) +
+               " m on the open side, not " + digits(face_closed(v, a, '-') ? hi[a] : lo[a]) + " m (" +
+               std::to_string(b.n[a]) + " spacings of " + digits(dp) + " m from the closed face)";
+    if (!change.empty()) out += std::string(out.empty() ? "" : "; ") + "along " + axis + " " + change;
+  }
+  return out.empty() ? "" : "the box does not fit a whole number of spacings: " + out;
 }
 
 }  // namespace talus

@@ -205,7 +205,10 @@ void Simulation::fill_bodies(const std::vector<std::string>& fields) {
       if (velocity) fill(fluid.vector("velocity"), v.vector("velocity"));
       if (density) fill(fluid.scalar("density"), m.density);
       if (pressure) fill(fluid.scalar("pressure"), 0.0);
-      if (mass) fill(fluid.scalar("mass"), m.density * std::pow(body.dp, world_.dim));
+      const ParamValues& shape = v.alternative_values("shape");
+      if (mass) fill(fluid.scalar("mass"), m.density * lattice_volume(alt, shape, body.dp, world_.dim));
+      if (const std::string adjusted = lattice_adjustment(alt, shape, body.dp, world_.dim); !adjusted.empty())
+        world_.warnings.add("fluid '" + body.name + "' (" + v.pointer("shape") + "): " + adjusted);
     }
   }
   if (density && pressure) start_hydrostatic(world_, bodies);

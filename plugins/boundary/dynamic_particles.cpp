@@ -128,7 +128,11 @@ void DynamicParticles::setup(World& world, std::span<const int> bodies) {
     if (points.empty()) v.fail("shape", "wall '" + body.name + "' has no wall particle at dp = " + std::to_string(dp));
     const std::size_t first = s.append(points.size());
     const double rho0 = world.materials[material].density;
-    const double mass = rho0 * std::pow(dp, world.dim);
+    const double mass = rho0 * lattice_volume(v.alternative("shape"), v.alternative_values("shape"), dp, world.dim);
+    if (const std::string adjusted = lattice_adjustment(v.alternative("shape"), v.alternative_values("shape"), dp,
+                                                        world.dim);
+        !adjusted.empty())
+      world.warnings.add("wall '" + body.name + "' (" + v.pointer("shape") + "): " + adjusted);
     auto x = s.position();
     auto x0 = s.vector("position0");
     auto rho = s.scalar("density");

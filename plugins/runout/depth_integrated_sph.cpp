@@ -9,6 +9,7 @@
 #include "follow_surface.hpp"
 #include "talus/output_name.hpp"
 #include "talus/error.hpp"
+#include "talus/geometry.hpp"
 #include "talus/sph/pair_loop.hpp"
 #include "talus/world.hpp"
 
@@ -34,6 +35,15 @@ double cell_value(const Grid& g, const Vec3& p, double outside) {
   const int c = std::clamp(static_cast<int>(std::lround(fx)), 0, g.ncols - 1);
   const int r = std::clamp(static_cast<int>(std::lround(fy)), 0, g.nrows - 1);
   return g.at(c, r) != g.nodata ? g.at(c, r) : outside;
+}
+
+// The plan area of one particle of fluid body `bi`: its lattice's cell
+// (dp^2, or a box's adjusted spacings).
+double plan_area(const World& world, int bi) {
+  const Body& body = world.bodies[bi];
+  const double dp = body.dp > 0 ? body.dp : world.dp;
+  if (!body.params.has("shape")) return dp * dp;  // particles placed by the caller
+  return lattice_volume(body.params.alternative("shape"), body.params.alternative_values("shape"), dp, 2);
 }
 
 }  // namespace
@@ -157,6 +167,8 @@ void DepthIntegratedSph::setup(World& world) {
     auto vol = s.scalar("volume");
     std::vector<std::uint8_t> drop(s.size(), 0);
     std::size_t dropped = 0;
+    std::vector<double> area(world.bodies.size());
+    for (std::size_t b = 0; b < area.size(); ++b) area[b] = plan_area(world, static_cast<int>(b));
     for (std::size_t i = 0; i < s.size(); ++i) {
       if (mat[i] < 0 || mat[i] >= static_cast<int>(world.materials.size()))
         throw InputError(where + "fluid particle " + std::to_string(i) + " has no material");
@@ -178,11 +190,10 @@ void DepthIntegratedSph::setup(World& world) {
                                         "move the release");
       }
       const Vec3 gz = terrain_->gradient(pos[i].x, pos[i].y);
-      const double dp = body[i] >= 0 && body[i] < static_cast<int>(world.bodies.size()) && world.bodies[body[i]].dp > 0
-                            ? world.bodies[body[i]].dp
-                            : world.dp;
-      // A vertical column over dp^2.
-      vol[i] = (vertical ? t : t * std::sqrt(1.0 + gz.x * gz.x + gz.y * gz.y)) * dp * dp;
+      // A vertical column over the particle's plan area (dp^2, or a box's adjusted spacings).
+      const bool has_body = body[i] >= 0 && body[i] < static_cast<int>(area.size());
+      vol[i] = (vertical ? t : t * std::sqrt(1.0 + gz.x * gz.x + gz.y * gz.y)) *
+               (has_body ? area[body[i]] : world.dp * world.dp);
       if (resists) s.scalar("initial_basal_shear")[i] = std::max(cell_value(resistance, pos[i], 0.0), 0.0);
     }
     if (dropped) {

@@ -1,6 +1,7 @@
 // Lattice filling of shapes and wall layers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -27,6 +28,84 @@ TEST(Geometry, BoxIsFilledWithSpacingDpHalfASpacingInsideTheFaces) {
   EXPECT_DOUBLE_EQ(pts.front().y, 0.025);
   EXPECT_DOUBLE_EQ(pts.back().x, 0.375);
   EXPECT_EQ(pts.back().z, 0.0);
+}
+
+// 0.161 m is 16.1 spacings of 0.01 m: 16 particles at 0.0100625 m, half a
+// spacing inside both faces, so the box holds exactly its volume; the
+// adjustment is said, and the whole-numbered axis keeps dp.
+TEST(Geometry, BoxNotAWholeNumberOfSpacingsKeepsItsFaces) {
+  const ParamValues b = shape(R"({"shape": {"box": {"min": [0.3, 0], "max": [0.461, 0.1]}}})", 2);
+  const ParamValues& box = b.alternative_values("shape");
+  const double dp = 0.01, sx = 0.161 / 16;
+  const auto pts = fill_points("box", box, dp, 2, {}, {});
+  ASSERT_EQ(pts.size(), 16u * 10u);
+  EXPECT_NEAR(pts.front().x, 0.3 + 0.5 * sx, 1e-15);
+  EXPECT_NEAR(pts[15].x, 0.461 - 0.5 * sx, 1e-15);
+  EXPECT_NEAR(pts.back().y, 0.1 - 0.5 * dp, 1e-15);
+  EXPECT_NEAR(lattice_volume("box", box, dp, 2) * pts.size(), 0.161 * 0.1, 1e-15);
+  const std::string note = lattice_adjustment("box", box, dp, 2);
+  EXPECT_NE(note.find("along x its 0.161 m are 16.1 spacings of 0.01 m: 16 particles at 0.0100625 m"),
+            std::string::npos)
+      << note;
+  EXPECT_EQ(note.find("along y"), std::string::npos) << note;
+  const ParamValues whole = shape(R"({"shape": {"box": {"min": [0, 0], "max": [0.4, 0.2]}}})", 2);
+  EXPECT_EQ(lattice_adjustment("box", whole.alternative_values("shape"), 0.05, 2), "");
+  EXPECT_EQ(lattice_volume("box", whole.alternative_values("shape"), 0.05, 2), std::pow(0.05, 2));
+}
+
+// 1.5 spacings would be one particle 50 % wider than dp; exactly one spacing is a staircase's column.
+TEST(Geometry, BoxUnderTwoSpacingsIsRefusedUnlessExactlyOne) {
+  const ParamValues column = shape(R"({"shape": {"box": {"min": [0.7, 0], "max": [0.71, 0.2]}}})", 2);
+  EXPECT_EQ(fill_points("box", column.alternative_values("shape"), 0.01, 2, {}, {}).size(), 20u);
+  const ParamValues b = shape(R"({"shape": {"box": {"min": [0, 0], "max": [0.015, 0.2]}}})", 2);
+  try {
+    fill_points("box", b.alternative_values("shape"), 0.01, 2, {}, {});
+    ADD_FAILURE() << "a box 1.5 spacings wide was filled";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/shape/box/max: the box spans 0.015 m along x, less than two particle "
+                                         "spacings (2 x 0.01 m) and not exactly one"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// The walls of a tank 1.05 m wide (10.5 spacings): their first layers lie
+// half a spacing outside the stated faces whichever face is open (the box's
+// adjusted spacing with both x faces closed, dp from the closed face with one
+// open), and the mirrored tank has the mirrored walls.
+TEST(Geometry, BoxWallsLieOnTheirFacesWhicheverFaceIsOpen) {
+  const double dp = 0.1, s = 1.05 / 11;
+  for (const char* open : {"-x", "+x", "+y"}) {
+    const std::string json = R"({"shape": {"box_walls": {"min": [0, 0], "max": [1.05, 0.5], "open": [")" +
+                             std::string(open) + R"("]}}})";
+    const ParamValues b = shape(json, 2);
+    const auto pts = wall_points("box_walls", b.alternative_values("shape"), dp, 2, 2, {}, {});
+    double inner_minus = -1e9, inner_plus = 1e9;
+    for (const auto& p : pts) {
+      if (p.y < 0.0 || p.y > 0.5) continue;  // the floor and the lid
+      if (p.x < 0.5) inner_minus = std::max(inner_minus, p.x);
+      if (p.x > 0.5) inner_plus = std::min(inner_plus, p.x);
+    }
+    const double spacing = std::string(open) == "+y" ? s : dp;
+    if (std::string(open) != "-x") EXPECT_NEAR(inner_minus, -0.5 * spacing, 1e-14) << open;
+    if (std::string(open) != "+x") EXPECT_NEAR(inner_plus, 1.05 + 0.5 * spacing, 1e-14) << open;
+  }
+  auto by_x_then_y = [](const Vec3& a, const Vec3& c) { return a.x != c.x ? a.x < c.x : a.y < c.y; };
+  auto walls = [&](const char* json) {
+    const ParamValues b = shape(json, 2);
+    auto pts = wall_points("box_walls", b.alternative_values("shape"), dp, 2, 2, {}, {});
+    std::sort(pts.begin(), pts.end(), by_x_then_y);
+    return pts;
+  };
+  const auto left = walls(R"({"shape": {"box_walls": {"min": [0, 0], "max": [1.05, 0.5], "open": ["-x"]}}})");
+  auto right = walls(R"({"shape": {"box_walls": {"min": [-1.05, 0], "max": [0, 0.5], "open": ["+x"]}}})");
+  for (auto& p : right) p.x = -p.x;
+  std::sort(right.begin(), right.end(), by_x_then_y);
+  ASSERT_EQ(left.size(), right.size());
+  for (std::size_t k = 0; k < left.size(); ++k) {
+    EXPECT_NEAR(left[k].x, right[k].x, 1e-14);
+    EXPECT_NEAR(left[k].y, right[k].y, 1e-14);
+  }
 }
 
 TEST(Geometry, SphereVolumeConverges) {
@@ -96,15 +175,19 @@ TEST(Geometry, PolygonNeedsThreeCornersAnAreaAndA2dDomain) {
 // Every point of the lattice over [lo, lo + n dp], tested one by one: what the
 // generator's skipping must reproduce exactly.
 template <class Keep>
-std::vector<Vec3> every_point(const Vec3& lo, const int n[3], double dp, int dim, Keep keep) {
+std::vector<Vec3> every_point(const Vec3& lo, const int n[3], const Vec3& s, int dim, Keep keep) {
   std::vector<Vec3> out;
   for (int k = 0; k < n[2]; ++k)
     for (int j = 0; j < n[1]; ++j)
       for (int i = 0; i < n[0]; ++i) {
-        const Vec3 p{lo.x + (i + 0.5) * dp, lo.y + (j + 0.5) * dp, dim == 3 ? lo.z + (k + 0.5) * dp : 0.0};
+        const Vec3 p{lo.x + (i + 0.5) * s.x, lo.y + (j + 0.5) * s.y, dim == 3 ? lo.z + (k + 0.5) * s.z : 0.0};
         if (keep(p)) out.push_back(p);
       }
   return out;
+}
+template <class Keep>
+std::vector<Vec3> every_point(const Vec3& lo, const int n[3], double dp, int dim, Keep keep) {
+  return every_point(lo, n, Vec3{dp, dp, dp}, dim, keep);
 }
 
 void expect_same_points(const std::vector<Vec3>& got, const std::vector<Vec3>& want) {
@@ -141,9 +224,12 @@ TEST(Geometry, SkippingKeepsEveryPointOfATiltedCylinderShell) {
 TEST(Geometry, SkippingKeepsEveryPointOfBoxWallsAndOfAHalfSpace) {
   const ParamValues w = shape(R"({"shape": {"box_walls": {"min": [0, 0, 0], "max": [0.83, 0.5, 0.61], "open": ["+z"]}}})");
   const double dp = 0.05;
-  const int n[3] = {23, 16, 15};  // (0.83 + 0.3) / dp, (0.5 + 0.3) / dp, (0.61 + 0.15) / dp rounded
+  // The box's lattice (16.6, 10 and 12.2 spacings: 17, 10 and 12 particles; dp along z, open at +z) and 3
+  // layers beyond its closed faces.
+  const Vec3 s{0.83 / 17, 0.5 / 10, dp};
+  const int n[3] = {17 + 6, 10 + 6, 12 + 3};
   expect_same_points(wall_points("box_walls", w.alternative_values("shape"), dp, 3, 3, {}, {}),
-                     every_point(Vec3{-0.15, -0.15, -0.15}, n, dp, 3, [](const Vec3& p) {
+                     every_point(s * -3.0, n, s, 3, [](const Vec3& p) {
                        return p.x < 0 || p.x > 0.83 || p.y < 0 || p.y > 0.5 || p.z < 0 || p.z > 0.61;
                      }));
   const ParamValues h = shape(R"({"shape": {"half_space": {"point": [0.3, 0.4], "normal": [1, 3]}}})", 2);

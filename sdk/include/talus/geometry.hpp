@@ -1,7 +1,11 @@
 // Shapes in a scene body's "shape" (a one-of object) and the lattices of
 // particles that fill them or wall them in. Particles sit on a lattice of
-// spacing dp with the first layer dp/2 inside a face, so that fluid and wall
-// lattices meet with spacing dp across the wall surface.
+// spacing dp with the first layer half a spacing inside a face, so that fluid
+// and wall lattices meet with one spacing across the wall surface. A box
+// (and box_walls) whose extent is not a whole number of spacings along an
+// axis gets round(L / dp) particles at L / round(L / dp) along it, so that
+// its faces lie where the scene says (lattice_adjustment says what changed).
+// A box under two spacings along an axis is refused.
 //
 //   box        { min, max }
 //   sphere     { centre, radius }
@@ -37,5 +41,13 @@ TALUS_API std::vector<Vec3> fill_points(const std::string& alternative, const Pa
 // solid shape, so that fluid outside it is walled).
 TALUS_API std::vector<Vec3> wall_points(const std::string& alternative, const ParamValues& shape, double dp, int dim,
                                         int layers, const Vec3& domain_lo, const Vec3& domain_hi);
+
+// The volume of one particle of the shape's lattice: dp^dim, or the product
+// of a box's adjusted spacings.
+TALUS_API double lattice_volume(const std::string& alternative, const ParamValues& shape, double dp, int dim);
+
+// What the lattice changes from dp to fit the shape, for the user ("" if nothing).
+TALUS_API std::string lattice_adjustment(const std::string& alternative, const ParamValues& shape, double dp,
+                                         int dim);
 
 }  // namespace talus

@@ -29,6 +29,13 @@ def periodic_strip(scene, dp, particles=8, axis=0):
     return scene
 
 
+def whole_spacings(box, dp, axis):
+    """Moves the box's max so that it spans a whole number of spacings dp along `axis` (the nearest): the host
+    then fills it at dp itself, on the lattice write_row_raster's cells are centred on."""
+    box["max"][axis] = box["min"][axis] + round((box["max"][axis] - box["min"][axis]) / dp) * dp
+    return box
+
+
 def write_row_raster(path, box, dp, value_of_y):
     """An ESRI ASCII raster (a release thickness) over a body's `box`, its cells centred on the lattice the box is
     filled with (spacing dp), every row the value at its y."""

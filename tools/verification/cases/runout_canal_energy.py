@@ -4,7 +4,7 @@ import os
 
 import numpy as np
 
-from verification.cases._util import frames, periodic_strip, set_dp, write_row_raster
+from verification.cases._util import frames, periodic_strip, set_dp, whole_spacings, write_row_raster
 from verification.cases.thacker_canal import STRIP
 
 NAME = "runout_canal_energy"
@@ -26,7 +26,9 @@ A_LENS = math.sqrt(H0 / K)
 
 
 def configure(scene, dp, option):
-    return periodic_strip(set_dp(scene, dp), dp, STRIP)
+    scene = periodic_strip(set_dp(scene, dp), dp, STRIP)
+    whole_spacings(scene["bodies"][0]["shape"]["box"], dp, 1)
+    return scene
 
 
 def prepare(directory, scene, dp):

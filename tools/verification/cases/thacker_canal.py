@@ -4,7 +4,7 @@ import os
 
 import numpy as np
 
-from verification.cases._util import frames, periodic_strip, set_dp, write_row_raster
+from verification.cases._util import frames, periodic_strip, set_dp, whole_spacings, write_row_raster
 
 NAME = "thacker_canal"
 TITLE = "Thacker planar oscillation in a parabolic canal, three periods (depth-integrated SPH, frictionless)"
@@ -32,6 +32,7 @@ def configure(scene, dp, option):
     periodic_strip(set_dp(scene, dp), dp, STRIP)
     box = scene["bodies"][0]["shape"]["box"]
     box["min"][1], box["max"][1] = -AMPLITUDE - A_LENS, -AMPLITUDE + A_LENS
+    whole_spacings(box, dp, 1)
     return scene
 
 
