@@ -73,7 +73,7 @@ struct SphWorld {
     return static_cast<int>(world.materials.size()) - 1;
   }
 
-  // A fluid box [lo, hi] on the dp lattice, optionally hydrostatic.
+  // A fluid box [lo, hi] on the host's lattice (talus/geometry.hpp), optionally hydrostatic.
   void fluid_box(int material, Vec3 lo, Vec3 hi, bool hydrostatic, Vec3 velocity = {}) {
     const int d = world.dim;
     auto shape = body_values(std::string("{\"shape\": {\"box\": {\"min\": ") + vec(lo, d) + ", \"max\": " + vec(hi, d) +
@@ -107,7 +107,7 @@ struct SphWorld {
       const std::size_t i = first + k;
       x[i] = pts[k];
       v[i] = velocity;
-      mass[i] = m.density * std::pow(world.dp, d);
+      mass[i] = m.density * talus::lattice_volume("box", shape.alternative_values("shape"), world.dp, d);
       mat[i] = material;
       bid[i] = bi;
       p[i] = hydrostatic ? m.density * g * (top - talus::dot(pts[k], up)) : 0.0;
