@@ -355,7 +355,8 @@ Solid solid(const std::string& alt, const ParamValues& v, int dim, const Vec3& d
 
 }  // namespace
 
-Vec3 lattice_spacing(const std::string& alt, const ParamValues& v, double dp, int dim);
+// The lattice spacing per axis of a shape (defined below, beside lattice_volume).
+static Vec3 lattice_spacing(const std::string& alt, const ParamValues& v, double dp, int dim);
 
 std::vector<Vec3> fill_points(const std::string& alt, const ParamValues& v, double dp, int dim, const Vec3& dlo,
                               const Vec3& dhi) {
@@ -394,7 +395,7 @@ std::vector<Vec3> wall_points(const std::string& alt, const ParamValues& v, doub
   });
 }
 
-Vec3 lattice_spacing(const std::string& alt, const ParamValues& v, double dp, int dim) {
+static Vec3 lattice_spacing(const std::string& alt, const ParamValues& v, double dp, int dim) {
   if (alt == "box") return box_lattice(v, dp, dim).spacing;
   if (alt == "box_walls") return tank_lattice(v, dp, dim).spacing;
   return {dp, dp, dp};
