@@ -249,13 +249,32 @@ std::vector<Vec3> box_wall_lattice(const ParamValues& v, const BoxLattice& box, 
   return out;
 }
 
-// A solid shape: its bounding box, inside(p), and the distance from p to its
-// surface (exact, on either side: the lattice skips by it).
+// A solid shape: its bounding box, inside(p), the distance from p to its
+// surface (exact, on either side: the lattice skips by it) and the point of
+// the surface nearest a point inside.
 struct Solid {
   Vec3 lo, hi;
   std::function<bool(const Vec3&)> inside;
   std::function<double(const Vec3&)> distance;
+  std::function<Vec3(const Vec3&)> surface;
 };
+
+// The point on the faces of the box [lo, hi] nearest p inside it: p moved to
+// its nearest face (the first axis on a tie).
+Vec3 nearest_box_face(const Vec3& p, const Vec3& lo, const Vec3& hi, int dim) {
+  int axis = 0;
+  double depth = 1e300, to = 0.0;
+  for (int a = 0; a < dim; ++a)
+    for (const double face : {lo[a], hi[a]})
+      if (std::abs(p[a] - face) < depth) {
+        depth = std::abs(p[a] - face);
+        axis = a;
+        to = face;
+      }
+  Vec3 s = p;
+  s[axis] = to;
+  return s;
+}
 
 Solid solid(const std::string& alt, const ParamValues& v, int dim, const Vec3& dlo, const Vec3& dhi) {
   if (alt == "box") {
@@ -274,13 +293,19 @@ Solid solid(const std::string& alt, const ParamValues& v, int dim, const Vec3& d
                 outside += beyond * beyond;
               }
               return outside > 0.0 ? std::sqrt(outside) : depth;
-            }};
+            },
+            [=](const Vec3& p) { return nearest_box_face(p, lo, hi, dim); }};
   }
   if (alt == "sphere") {
     const Vec3 c = v.vector("centre");
     const double r = v.real("radius");
     const Vec3 e{r, r, dim == 3 ? r : 0.0};
-    return {c - e, c + e, [=](const Vec3& p) { return norm(p - c) < r; }, [=](const Vec3& p) { return std::abs(r - norm(p - c)); }};
+    return {c - e, c + e, [=](const Vec3& p) { return norm(p - c) < r; },
+            [=](const Vec3& p) { return std::abs(r - norm(p - c)); },
+            [=](const Vec3& p) {
+              const double d = norm(p - c);
+              return d > 0.0 ? c + (p - c) * (r / d) : c + Vec3{r, 0.0, 0.0};
+            }};
   }
   if (alt == "cylinder") {
     if (dim != 3) v.fail("", "a cylinder needs a 3D domain (use a box in 2D)");
@@ -299,6 +324,15 @@ Solid solid(const std::string& alt, const ParamValues& v, int dim, const Vec3& d
               const double axial = std::max(-s, s - len), across = rho - r;
               if (axial <= 0.0 && across <= 0.0) return std::min(-axial, -across);
               return std::hypot(std::max(0.0, axial), std::max(0.0, across));
+            },
+            [=](const Vec3& p) {
+              const Vec3 d = p - base;
+              const double s = dot(d, axis);
+              const Vec3 out = d - axis * s;
+              const double rho = norm(out);
+              if (r - rho < std::min(s, len - s))  // the mantle is nearest
+                return base + axis * s + (rho > 0.0 ? out * (r / rho) : Vec3{});
+              return p + axis * (s < len - s ? -s : len - s);
             }};
   }
   if (alt == "polygon") {
@@ -325,30 +359,41 @@ Solid solid(const std::string& alt, const ParamValues& v, int dim, const Vec3& d
           in = !in;
       return in;
     };
-    auto edge_distance = [c](const Vec3& p) {
+    auto nearest_edge_point = [c](const Vec3& p) {
       double d = 1e300;
+      Vec3 nearest;
       for (std::size_t k = 0; k < c.size(); ++k) {
         const Vec3 a = c[k], e = c[(k + 1) % c.size()] - a;
         const double t = std::clamp(dot(p - a, e) / dot(e, e), 0.0, 1.0);
-        d = std::min(d, norm(p - (a + e * t)));
+        if (norm(p - (a + e * t)) < d) {
+          d = norm(p - (a + e * t));
+          nearest = a + e * t;
+        }
       }
-      return d;
+      return nearest;
     };
-    return {lo, hi, inside, edge_distance};
+    return {lo, hi, inside, [=](const Vec3& p) { return norm(p - nearest_edge_point(p)); }, nearest_edge_point};
   }
   if (alt == "half_space") {
     const Vec3 x0 = v.vector("point");
     Vec3 n = v.vector("normal");
     if (!(norm(n) > 0.0)) v.fail("normal", "must not be the zero vector");
     n = n / norm(n);
-    return {dlo, dhi, [=](const Vec3& p) { return dot(p - x0, n) < 0.0; }, [=](const Vec3& p) { return std::abs(dot(p - x0, n)); }};
+    return {dlo, dhi, [=](const Vec3& p) { return dot(p - x0, n) < 0.0; },
+            [=](const Vec3& p) { return std::abs(dot(p - x0, n)); },
+            [=](const Vec3& p) { return p - n * dot(p - x0, n); }};
   }
   if (alt == "mesh") {
     auto mesh = std::make_shared<TriangleMesh>(scaled_mesh(v));
     Vec3 lo, hi;
     mesh->bounds(lo, hi);
     return {lo, hi, [mesh](const Vec3& p) { return mesh->contains(p); },
-            [mesh](const Vec3& p) { return mesh->distance(p); }};
+            [mesh](const Vec3& p) { return mesh->distance(p); },
+            [mesh](const Vec3& p) {
+              Vec3 nearest;
+              mesh->distance(p, &nearest);
+              return nearest;
+            }};
   }
   v.fail("", "shape '" + alt + "' cannot be filled with particles (it is for blocks or walls only)");
 }
@@ -393,6 +438,37 @@ std::vector<Vec3> wall_points(const std::string& alt, const ParamValues& v, doub
     if (!s.inside(p)) return Verdict{false, points_within(d, spacing.x)};
     return d < thickness ? Verdict{true} : Verdict{false, points_within(d - thickness, spacing.x)};
   });
+}
+
+std::function<Vec3(const Vec3&)> wall_surface(const std::string& alt, const ParamValues& v, int dim, const Vec3& dlo,
+                                              const Vec3& dhi) {
+  if (alt != "box_walls") return solid(alt, v, dim, dlo, dhi).surface;
+  const Vec3 lo = v.vector("min"), hi = v.vector("max");
+  return [=](const Vec3& p) {  // walls outside the box: the nearest point of the box
+    Vec3 s = p;
+    for (int a = 0; a < dim; ++a) s[a] = std::clamp(p[a], lo[a], hi[a]);
+    return s;
+  };
+}
+
+std::function<bool(const Vec3&)> wall_region(const std::string& alt, const ParamValues& v, double dp, int dim,
+                                             int layers, const Vec3& dlo, const Vec3& dhi) {
+  if (alt != "box_walls") return solid(alt, v, dim, dlo, dhi).inside;
+  const BoxLattice tank = tank_lattice(v, dp, dim);
+  const Vec3 lo = v.vector("min"), hi = v.vector("max");
+  Vec3 outer_lo = lo, outer_hi = hi;  // the box grown by the walls' thickness across its closed faces
+  for (int a = 0; a < dim; ++a) {
+    if (face_closed(v, a, '-')) outer_lo[a] -= layers * tank.spacing[a];
+    if (face_closed(v, a, '+')) outer_hi[a] += layers * tank.spacing[a];
+  }
+  return [=](const Vec3& p) {
+    bool in_box = true;
+    for (int a = 0; a < dim; ++a) {
+      if (p[a] < outer_lo[a] || p[a] > outer_hi[a]) return false;
+      in_box = in_box && p[a] >= lo[a] && p[a] <= hi[a];
+    }
+    return !in_box;
+  };
 }
 
 static Vec3 lattice_spacing(const std::string& alt, const ParamValues& v, double dp, int dim) {

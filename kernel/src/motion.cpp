@@ -103,6 +103,14 @@ Vec3 PrescribedMotion::position(const Vec3& x0, double t) const {
   return x0;
 }
 
+Vec3 PrescribedMotion::initial_position(const Vec3& x, double t) const {
+  if (kind_ == Kind::hinge) {
+    const double a = amplitude_ * (std::sin(omega_ * t + phase_) - std::sin(phase_));
+    return point_ + rotate(x - point_, axis_, -a);
+  }
+  return x - position(Vec3{}, t);  // the other motions translate every point alike
+}
+
 Vec3 PrescribedMotion::velocity(const Vec3& x0, double t) const {
   switch (kind_) {
     case Kind::none: return {};

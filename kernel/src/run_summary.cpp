@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "number_text.hpp"
+#include "talus/number_text.hpp"
 #include "progress.hpp"
 #include "simulation.hpp"
 #include "talus/blocks.hpp"

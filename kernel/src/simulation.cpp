@@ -14,7 +14,7 @@
 #include <limits>
 #include <sstream>
 
-#include "number_text.hpp"
+#include "talus/number_text.hpp"
 #include "output_schedule.hpp"
 #include "progress.hpp"
 #include "run_summary.hpp"

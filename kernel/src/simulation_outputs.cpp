@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "checkpoint.hpp"
-#include "number_text.hpp"
+#include "talus/number_text.hpp"
 #include "output_schedule.hpp"
 #include "talus/error.hpp"
 #include "talus/stage.hpp"

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <string>
 
-#include "number_text.hpp"
+#include "talus/number_text.hpp"
 #include "talus/error.hpp"
 
 namespace talus {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "number_text.hpp"
+#include "talus/number_text.hpp"
 #include "plugin_registry.hpp"
 #include "talus/stage.hpp"
 #include "talus/writer.hpp"

@@ -259,6 +259,43 @@ TEST(Geometry, WallsOfALargeTankCostTheirSurfaceNotTheTankVolume) {
   EXPECT_EQ(pts.size(), (400000u + 4u) * 2u + 200000u * 2u * 2u);
 }
 
+// mDBC ghost nodes mirror each wall particle across the surface point nearest it.
+TEST(Geometry, WallSurfacePointsOfATankLieOnItsFacesEdgesAndCorners) {
+  const ParamValues b = shape(R"({"shape": {"box_walls": {"min": [0, 0], "max": [0.4, 0.3], "open": ["+y"]}}})", 2);
+  const ParamValues& tank = b.alternative_values("shape");
+  const auto pts = wall_points("box_walls", tank, 0.02, 2, 3, {}, {});
+  const auto surface = wall_surface("box_walls", tank, 2, {}, {});
+  int corners = 0;
+  for (const Vec3& p : pts) {
+    const Vec3 s = surface(p);
+    const bool below = p.y < 0.0, left = p.x < 0.0, right = p.x > 0.4;
+    EXPECT_DOUBLE_EQ(s.y, below ? 0.0 : p.y);
+    EXPECT_DOUBLE_EQ(s.x, left ? 0.0 : right ? 0.4 : p.x);
+    if (below && (left || right)) ++corners;  // mirrored through the corner point
+  }
+  EXPECT_EQ(corners, 2 * 3 * 3);
+}
+
+TEST(Geometry, WallSurfacePointsOfSolidsAreTheNearestPointsOfTheirSurfaces) {
+  const ParamValues box = shape(R"({"shape": {"box": {"min": [0, 0, 0], "max": [1, 2, 3]}}})");
+  const auto on_box = wall_surface("box", box.alternative_values("shape"), 3, {}, {});
+  EXPECT_EQ(on_box({0.1, 1.0, 1.5}), (Vec3{0.0, 1.0, 1.5}));
+  EXPECT_EQ(on_box({0.5, 1.9, 1.5}), (Vec3{0.5, 2.0, 1.5}));
+  EXPECT_EQ(on_box({0.5, 1.0, 0.2}), (Vec3{0.5, 1.0, 0.0}));
+  const ParamValues ball = shape(R"({"shape": {"sphere": {"centre": [1, 1, 1], "radius": 0.5}}})");
+  const auto on_ball = wall_surface("sphere", ball.alternative_values("shape"), 3, {}, {});
+  EXPECT_NEAR(norm(on_ball({1.3, 1.0, 1.0}) - Vec3{1.5, 1.0, 1.0}), 0.0, 1e-15);
+  EXPECT_NEAR(norm(on_ball({1.0, 1.0, 0.8}) - Vec3{1.0, 1.0, 0.5}), 0.0, 1e-15);
+  const ParamValues half = shape(R"({"shape": {"half_space": {"point": [0, 0, 1], "normal": [0, 0, 2]}}})");
+  const auto on_plane = wall_surface("half_space", half.alternative_values("shape"), 3, {0, 0, 0}, {1, 1, 2});
+  EXPECT_NEAR(norm(on_plane({0.3, 0.4, 0.9}) - Vec3{0.3, 0.4, 1.0}), 0.0, 1e-15);
+  const ParamValues can = shape(R"({"shape": {"cylinder": {"base": [0, 0, 0], "radius": 1, "height": 4}}})");
+  const auto on_can = wall_surface("cylinder", can.alternative_values("shape"), 3, {}, {});
+  EXPECT_NEAR(norm(on_can({0.9, 0.0, 2.0}) - Vec3{1.0, 0.0, 2.0}), 0.0, 1e-15);
+  EXPECT_NEAR(norm(on_can({0.0, 0.2, 0.1}) - Vec3{0.0, 0.2, 0.0}), 0.0, 1e-15);
+  EXPECT_NEAR(norm(on_can({0.1, 0.0, 3.8}) - Vec3{0.1, 0.0, 4.0}), 0.0, 1e-15);
+}
+
 TEST(Mesh, ObjCubeContainsAndMeasures) {
   const std::string path = std::string(TALUS_BINARY_DIR) + "/tests/cube_test.obj";
   test::write_file(path,

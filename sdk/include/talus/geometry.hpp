@@ -18,6 +18,7 @@
 //   polyhedron { vertices, faces }                     convex, faces CCW from outside (blocks)
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,21 @@ TALUS_API std::vector<Vec3> fill_points(const std::string& alternative, const Pa
 // solid shape, so that fluid outside it is walled).
 TALUS_API std::vector<Vec3> wall_points(const std::string& alternative, const ParamValues& shape, double dp, int dim,
                                         int layers, const Vec3& domain_lo, const Vec3& domain_hi);
+
+// The point of the wall surface nearest a point in the wall material: for
+// box_walls the nearest point of the box (on a face, or an edge or corner
+// behind which the point lies), for a solid the nearest point of its
+// surface. mDBC mirrors a wall particle x across it to its ghost node
+// 2 s - x; a fluid particle found inside a wall is put back there.
+TALUS_API std::function<Vec3(const Vec3&)> wall_surface(const std::string& alternative, const ParamValues& shape,
+                                                        int dim, const Vec3& domain_lo, const Vec3& domain_hi);
+
+// Whether a point lies in the material of a wall of this shape with `layers`
+// layers: for box_walls the slab of the walls outside the closed faces, for a
+// solid the solid. A fluid particle there has passed through the wall.
+TALUS_API std::function<bool(const Vec3&)> wall_region(const std::string& alternative, const ParamValues& shape,
+                                                       double dp, int dim, int layers, const Vec3& domain_lo,
+                                                       const Vec3& domain_hi);
 
 // The volume of one particle of the shape's lattice: dp^dim, or the product
 // of a box's adjusted spacings.

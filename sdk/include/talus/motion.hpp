@@ -30,6 +30,8 @@ class TALUS_API PrescribedMotion {
   // Position and velocity at time t of the material point that was at x0 at t = 0.
   Vec3 position(const Vec3& x0, double t) const;
   Vec3 velocity(const Vec3& x0, double t) const;
+  // Where the material point that is at x at time t was at t = 0 (the inverse of position).
+  Vec3 initial_position(const Vec3& x, double t) const;
   bool moves() const { return kind_ != Kind::none; }
 
  private:
