@@ -42,6 +42,7 @@ void write_summary_file(const RunSummary& r, const std::string& path) {
                             {"particle_steps", r.particle_steps},
                             {"peak_memory_mib", r.peak_memory_mib},
                             {"removed", world.removed},
+                            {"wall_crossings", world.wall_crossings},
                             {"warnings", world.warnings.all()},
                             {"threads", omp_get_max_threads()},
                             {"finish", r.finish_lines}};
@@ -69,6 +70,9 @@ void print_summary(const RunSummary& r) {
               static_cast<unsigned long long>(steps), fixed(world.time, 6).c_str(), clock_text(wall).c_str(),
               wall > 0 ? steps / wall : 0.0, wall > 0 ? r.particle_steps / wall / 1e6 : 0.0, r.peak_memory_mib);
   for (const auto& warning : world.warnings.all()) std::printf("       warning: %s\n", warning.c_str());
+  if (world.wall_crossings)
+    std::printf("       %llu fluid particles passed into a wall (the warnings say where and when the first did)\n",
+                static_cast<unsigned long long>(world.wall_crossings));
   if (world.removed) std::printf("       %llu fluid particles left the domain and were removed\n",
                                  static_cast<unsigned long long>(world.removed));
   for (std::size_t i = 0; i < r.stages.size(); ++i) {

@@ -91,13 +91,29 @@ ParamSet DynamicParticles::describe() {
       .doc("wall velocity in the laminar/Laplacian viscous term: extrapolated = 2 v_wall - Shepard(v_fluid) (Adami et "
            "al. 2012; no-slip on the wall surface, second order), wall_velocity = the wall particle's own (DualSPHysics "
            "DBC; no-slip ~0.7 dp behind the surface, first order). Artificial viscosity always uses the wall's own");
+  p.choice("method", {"dbc", "mdbc"})
+      .default_value("dbc")
+      .doc("how the wall particles get their density: dbc = continuity with the fluid (Crespo et al. 2007), mdbc = "
+           "extrapolated from a ghost node mirrored across the wall surface (English et al. 2022: no DBC gap, the "
+           "wall pressure continues the fluid's)");
+  p.choice("slip", {"no_slip", "free_slip"})
+      .default_value("no_slip")
+      .doc("free_slip (needs method mdbc): the viscous terms, artificial viscosity included, see the ghost node's "
+           "tangential velocity and its mirrored normal velocity, so the wall stops flow through it but exerts no "
+           "shear (a symmetry plane); no_slip: as \"no_slip\" says");
   return p;
 }
 
 DynamicParticles::DynamicParticles(const ParamValues& v)
-    // Validated values always hold "no_slip" (it has a default); tests may pass none.
+    // Validated values always hold the choices (they have defaults); tests may pass none.
     : no_slip_(v.has("no_slip") && v.string("no_slip") == "wall_velocity" ? NoSlip::wall_velocity
-                                                                          : NoSlip::extrapolated) {}
+                                                                          : NoSlip::extrapolated),
+      method_(v.has("method") && v.string("method") == "mdbc" ? Method::mdbc : Method::dbc),
+      slip_(v.has("slip") && v.string("slip") == "free_slip" ? sph::WallSlip::free_slip : sph::WallSlip::no_slip) {
+  if (slip_ == sph::WallSlip::free_slip && method_ != Method::mdbc)
+    v.fail("slip", "free_slip needs \"method\": \"mdbc\": DBC wall particles have no wall normal to mirror the "
+                   "fluid velocity about");
+}
 
 void DynamicParticles::setup(World& world, std::span<const int> bodies) {
   ParticleStore& s = world.boundary;
@@ -139,6 +155,10 @@ void DynamicParticles::setup(World& world, std::span<const int> bodies) {
     auto m = s.scalar("mass");
     auto mat = s.material();
     auto bid = s.body();
+    const auto surface = wall_surface(v.alternative("shape"), v.alternative_values("shape"), world.dim, world.lo,
+                                      world.hi);
+    if (method_ == Method::mdbc)
+      for (const Vec3& p : points) ghost0_.push_back(surface(p) * 2.0 - p);
     for (std::size_t k = 0; k < points.size(); ++k) {
       const std::size_t i = first + k;
       x[i] = x0[i] = points[k];
@@ -152,6 +172,10 @@ void DynamicParticles::setup(World& world, std::span<const int> bodies) {
     body_names_.push_back(body.name);
     motion_.push_back(v.has("motion") ? PrescribedMotion(v.alternative("motion"), v.alternative_values("motion"))
                                       : PrescribedMotion());
+    region_.push_back(wall_region(v.alternative("shape"), v.alternative_values("shape"), dp, world.dim, layers,
+                                  world.lo, world.hi));
+    surface_.push_back(surface);
+    crossing_reach_ = crossing_reach_ > 0.0 ? std::min(crossing_reach_, 0.75 * dp) : 0.75 * dp;
     moves_ = moves_ || motion_.back().moves();
   }
   count_ = s.size() - first_;
@@ -159,9 +183,13 @@ void DynamicParticles::setup(World& world, std::span<const int> bodies) {
 
 void DynamicParticles::bind(World& world, const sph::FluidSettings& settings) {
   settings_ = settings;
-  mirror_ = no_slip_ == NoSlip::extrapolated && settings.viscous_velocity;
+  mirror_ = slip_ == sph::WallSlip::free_slip || (no_slip_ == NoSlip::extrapolated && settings.viscous_velocity);
   noslip_v_.assign(mirror_ ? count_ : 0, Vec3{});
   WallFields w(world.boundary, first_, count_);
+  if (method_ == Method::mdbc) {
+    ghost_ = ghost0_;
+    place_ghosts(world, world.time);
+  }
   // Per-material index lists for the EOS batch calls (indices in world.boundary).
   by_material_.assign(world.materials.size(), {});
   rho0_of_material_.assign(world.materials.size(), 0.0);
@@ -238,14 +266,79 @@ void DynamicParticles::begin_step(World& world) {
   std::ranges::copy(w.rho, w.rho_n.begin());
 }
 
+void DynamicParticles::hold_fluid(World& world, double time) {
+  ParticleStore& fluid = world.fluid;
+  const std::size_t n = fluid.size();
+  if (n == 0 || count_ == 0) return;
+  const auto x = fluid.position();
+  const auto wall_body = world.boundary.body().subspan(first_, count_);
+  near_slot_.resize(n);
+  const double reach = crossing_reach_;
+  const int* slot_of_body = slot_of_body_.data();
+  std::size_t near = 0;
+#pragma omp parallel for schedule(static) reduction(+ : near) if (n >= sph::parallel_min)
+  for (std::size_t i = 0; i < n; ++i) {
+    std::int32_t slot = -1;
+    cells_.for_each_neighbour(x[i], reach, [&](Index b, const Vec3&, double) { slot = slot_of_body[wall_body[b]]; });
+    near_slot_[i] = slot;
+    near += slot >= 0;
+  }
+  if (near == 0) return;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::int32_t slot = near_slot_[i];
+    if (slot < 0) continue;
+    const PrescribedMotion& motion = motion_[slot];
+    const Vec3 x0 = motion.initial_position(x[i], time);
+    if (!region_[slot](x0)) continue;
+    const Vec3 surface = motion.position(surface_[slot](x0), time);
+    const Vec3 out = surface - x[i];  // out of the wall, into the fluid
+    const Vec3 normal = norm(out) > 0.0 ? out * (1.0 / norm(out)) : Vec3{};
+    crossings_.put_back(world, i, surface, normal, motion.velocity(surface_[slot](x0), time),
+                        static_cast<std::size_t>(slot), "wall '" + body_names_[slot] + "'", time);
+  }
+}
+
 void DynamicParticles::refresh_wall_sets(World& world) {
   if (moves_) cells_.build(world.boundary.position().subspan(first_, count_));  // a restart loads the positions
+  place_ghosts(world, world.time);
   refresh_set(world);
 }
 
 std::uint64_t DynamicParticles::fill_wall_state(World& world, const sph::FluidView& fluid) {
   WallFields w(world.boundary, first_, count_);
   if (moves_) cells_.build(w.x);  // also right after a restart, which loads the positions
+  const std::uint64_t pairs = method_ == Method::mdbc ? fill_from_ghost_nodes(world, fluid) : fill_continuity(world, fluid);
+  refresh_set(world);
+  return pairs;
+}
+
+void DynamicParticles::place_ghosts(World& world, double time) {
+  if (!moves_ || method_ != Method::mdbc) return;
+  WallFields w(world.boundary, first_, count_);
+  for (std::size_t b = 0; b < count_; ++b)
+    ghost_[b] = wrap_periodic(world, motion_[slot_of_body_[w.body[b]]].position(ghost0_[b], time));
+}
+
+// mDBC: density (then pressure) and the viscous velocity from the ghost nodes.
+std::uint64_t DynamicParticles::fill_from_ghost_nodes(World& world, const sph::FluidView& fluid) {
+  WallFields w(world.boundary, first_, count_);
+  if (noslip_v_.size() != (mirror_ ? count_ : 0)) noslip_v_.resize(mirror_ ? count_ : 0);
+  const std::uint64_t pairs =
+      sph::extrapolate_from_ghost_nodes(world.dim, {w.x, ghost_, w.v}, fluid, *settings_.kernel, slip_, w.p, noslip_v_);
+  // The wall density from its material's EOS, never below rho0 (as DBC: a wall never pulls the fluid).
+  inv_rho_.resize(count_);
+  for (std::size_t b = 0; b < count_; ++b) {
+    const Material& mat = world.materials[w.mat[b]];
+    w.rho[b] = std::max(mat.density, mat.eos->density_at(std::max(0.0, w.p[b])));
+    inv_rho_[b] = 1.0 / w.rho[b];
+  }
+  update_pressure(world);
+  return pairs;
+}
+
+// DBC: the wall particles' continuity rates.
+std::uint64_t DynamicParticles::fill_continuity(World& world, const sph::FluidView& fluid) {
+  WallFields w(world.boundary, first_, count_);
   // 1/rho from the current density (also right after a restart, which loads the density only).
   inv_rho_.resize(count_);
   for (std::size_t b = 0; b < count_; ++b) inv_rho_[b] = 1.0 / w.rho[b];
@@ -271,18 +364,20 @@ std::uint64_t DynamicParticles::fill_wall_state(World& world, const sph::FluidVi
     pairs = sph::pair_pass(count_, wx, *fluid.cells, kernel, sph::other_set, start, finish,
                            continuity);
   }
-  refresh_set(world);
   return pairs;
 }
 
 void DynamicParticles::advance_walls(World& world, double time, double dt) {
   WallFields w(world.boundary, first_, count_);
   const double* rho0 = rho0_of_material_.data();
+  if (method_ == Method::dbc) {
 #pragma omp parallel for schedule(static) if (count_ >= 4096)
-  for (std::size_t b = 0; b < count_; ++b) {
-    // DualSPHysics: a wall particle never goes below rho0, so walls never pull fluid.
-    w.rho[b] = std::max(rho0[w.mat[b]], w.rho_n[b] + dt * w.drho[b]);
+    for (std::size_t b = 0; b < count_; ++b) {
+      // DualSPHysics: a wall particle never goes below rho0, so walls never pull fluid.
+      w.rho[b] = std::max(rho0[w.mat[b]], w.rho_n[b] + dt * w.drho[b]);
+    }
   }
+  place_ghosts(world, time);
   if (moves_) {
 #pragma omp parallel for schedule(static) if (count_ >= 4096)
     for (std::size_t b = 0; b < count_; ++b) {
@@ -300,9 +395,17 @@ void DynamicParticles::describe_passes(StagePlan& plan) const {
   for (const auto& n : body_names_) names += (names.empty() ? "'" : ", '") + n + "'";
   plan.passes.push_back("fluid-wall pass (dynamic_particles " + names +
                         "): the stage's pressure + viscosity + continuity against the wall set");
-  plan.passes.push_back("wall-fluid pass (dynamic_particles " + names + "): wall continuity" +
-                        (mirror_ ? ", extrapolated no-slip velocity 2 v_wall - Shepard(v_fluid)" : "") +
-                        ", wall EOS" + (moves_ ? ", prescribed motion" : ""));
+  if (method_ == Method::mdbc)
+    plan.passes.push_back("ghost-node pass (dynamic_particles mdbc " + names +
+                          "): first-order density at the mirrored ghost nodes" +
+                          (!mirror_                                 ? ""
+                           : slip_ == sph::WallSlip::free_slip ? ", free-slip velocity (normal part mirrored)"
+                                                                : ", no-slip velocity 2 v_wall - v_ghost") +
+                          ", wall EOS" + (moves_ ? ", prescribed motion" : ""));
+  else
+    plan.passes.push_back("wall-fluid pass (dynamic_particles " + names + "): wall continuity" +
+                          (mirror_ ? ", extrapolated no-slip velocity 2 v_wall - Shepard(v_fluid)" : "") +
+                          ", wall EOS" + (moves_ ? ", prescribed motion" : ""));
 }
 
 }  // namespace talus::boundary

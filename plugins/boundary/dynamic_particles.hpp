@@ -27,13 +27,34 @@
 // Pressure and continuity always use the wall's own velocity, and the
 // artificial viscosity (not a no-slip model) too: scenes with
 // "viscosity": "artificial" are unchanged by this option.
+//
+// "method": "mdbc" replaces the continuity of the wall particles by the
+// modified DBC (sph/ghost_nodes.hpp): every wall particle takes the pressure
+// extrapolated from its ghost node, mirrored across the shape's surface
+// (geometry.hpp wall_surface), as a density through the wall
+// material's EOS (never below rho0), and the viscous velocity mirrored from
+// the ghost node, no-slip or, with "slip": "free_slip", free-slip (which
+// the artificial viscosity sees too, so that a free-slip wall never shears).
+// The ghost nodes move with the wall's prescribed motion.
+//
+// At the end of every step a fluid particle closer than 0.75 dp to a wall
+// particle is tested against the wall's shape (geometry.hpp wall_region, in
+// the wall's frame at t = 0): one inside the wall material has passed
+// through it. It is put back on the nearest point of the wall surface with
+// its velocity into the wall (relative to the wall) taken away, counted once
+// (World::wall_crossings) and the first of each wall warned with where and
+// when.
 #pragma once
+
+#include <functional>
 
 #include <vector>
 
 #include "talus/neighbour_grid.hpp"
 #include "talus/motion.hpp"
 #include "talus/sph/boundary_pass.hpp"
+#include "talus/sph/ghost_nodes.hpp"
+#include "talus/sph/wall_crossings.hpp"
 
 namespace talus::boundary {
 
@@ -41,6 +62,7 @@ class DynamicParticles final : public sph::SphBoundary {
  public:
   static ParamSet describe();
   enum class NoSlip { extrapolated, wall_velocity };
+  enum class Method { dbc, mdbc };
   explicit DynamicParticles(const ParamValues& v);
 
   void setup(World& world, std::span<const int> bodies) override;
@@ -52,6 +74,7 @@ class DynamicParticles final : public sph::SphBoundary {
     return count_ > 0 ? std::span<const sph::WallSet>(&set_, 1) : std::span<const sph::WallSet>();
   }
   void advance_walls(World& world, double time, double dt) override;
+  void hold_fluid(World& world, double time) override;
   void describe_passes(StagePlan& plan) const override;
 
   std::size_t first() const { return first_; }
@@ -61,6 +84,9 @@ class DynamicParticles final : public sph::SphBoundary {
   void update_pressure(World& world);
   void initial_density(World& world);
   void refresh_set(World& world);  // set_ at the store's current arrays
+  void place_ghosts(World& world, double time);  // ghost_ at the walls' prescribed positions
+  std::uint64_t fill_continuity(World& world, const sph::FluidView& fluid);
+  std::uint64_t fill_from_ghost_nodes(World& world, const sph::FluidView& fluid);
 
   std::vector<int> bodies_;
   std::vector<std::string> body_names_;
@@ -68,13 +94,23 @@ class DynamicParticles final : public sph::SphBoundary {
   std::vector<std::vector<Index>> by_material_;  // wall indices per material, for the EOS calls
   std::vector<double> rho0_of_material_;
   std::vector<PrescribedMotion> motion_;       // per body slot
+  std::vector<std::function<bool(const Vec3&)>> region_;  // per body slot: inside the wall material (t = 0 frame)
+  std::vector<std::function<Vec3(const Vec3&)>> surface_;  // per body slot: the nearest wall surface point (t = 0)
+  sph::WallCrossings crossings_;                          // fluid found inside my walls (by body slot)
+  std::vector<std::int32_t> near_slot_;                   // per fluid particle: the slot of a wall within reach, or -1
+  double crossing_reach_ = 0.0;                           // 0.75 dp, the smallest dp of my walls
   std::vector<int> slot_of_body_;              // world body index -> slot (-1: not mine)
   bool moves_ = false;
   sph::FluidSettings settings_;
   NeighbourGrid cells_;
   std::vector<double> inv_rho_;  // 1/rho of my wall particles, refreshed by every fill_wall_state()
   NoSlip no_slip_ = NoSlip::extrapolated;
-  bool mirror_ = false;           // no_slip extrapolated and a viscous term that uses it (laminar, Laplacian)
+  Method method_ = Method::dbc;
+  sph::WallSlip slip_ = sph::WallSlip::no_slip;
+  // A mirrored viscous velocity: free slip, or the extrapolated no-slip with a
+  // viscous term that uses it (laminar, Laplacian).
+  bool mirror_ = false;
+  std::vector<Vec3> ghost0_, ghost_;  // mDBC ghost nodes of my wall particles at t = 0 and now
   std::vector<Vec3> noslip_v_;    // v_b* of my wall particles, refilled by every fill_wall_state()
   sph::WallSet set_;              // all my wall particles, one set
 };

@@ -114,4 +114,19 @@ void ImpulseLedger::commit(World& world, std::span<const std::size_t> blocks, do
   }
 }
 
+void ImpulseLedger::add_impulse(World& world, std::span<const std::size_t> blocks, std::size_t k, const Vec3& impulse,
+                                const Vec3& angular, double time) {
+  const double host_dt = time - world.time;
+  if (!(host_dt > 0.0)) return;
+  BlockSet& b = *world.blocks;
+  given_[k] += impulse;
+  owed_[k] += impulse;
+  owed_angular_[k] += angular;
+  const Vec3 f = impulse / host_dt, t = angular / host_dt;
+  b.external_force[blocks[k]] += f;
+  b.external_torque[blocks[k]] += t;
+  committed_[k] += f;
+  committed_torque_[k] += t;
+}
+
 }  // namespace talus::coupling

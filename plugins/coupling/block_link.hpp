@@ -52,6 +52,11 @@ class ImpulseLedger {
   }
   // Fluid state advanced to `time` with rates applied over `dt`.
   void commit(World& world, std::span<const std::size_t> blocks, double time, double dt);
+  // An impulse (and its moment about the centroid) the fluid gave block k
+  // outside its rates, after the step's last commit (a fluid particle
+  // stopped at the block's face): owed, and delivered over the next step.
+  void add_impulse(World& world, std::span<const std::size_t> blocks, std::size_t k, const Vec3& impulse,
+                   const Vec3& angular, double time);
 
   const Vec3& force(std::size_t k) const { return force_[k]; }
   const Vec3& torque(std::size_t k) const { return torque_[k]; }

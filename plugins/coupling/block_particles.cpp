@@ -9,6 +9,7 @@
 #include "talus/dda/polyhedron.hpp"
 #include "talus/eos.hpp"
 #include "talus/error.hpp"
+#include "talus/periodic.hpp"
 #include "talus/sph/fluid_terms.hpp"
 #include "talus/sph/pair_loop.hpp"
 #include "talus/sph/wall_fields.hpp"
@@ -41,6 +42,22 @@ struct Shell {
   std::vector<Vec3> points;
   Vec3 spacing;
 };
+
+// mDBC ghost node of a body-frame point inside the polyhedron: its mirror
+// image across the nearest of the faces in `covered` (empty: all).
+Vec3 ghost_offset(const Polyhedron& poly, const Vec3& p, const std::vector<char>& covered) {
+  double depth = 1e300;
+  Vec3 ghost = p;
+  for (std::size_t f = 0; f < poly.normals.size(); ++f) {
+    if (!covered.empty() && !covered[f]) continue;
+    const double d = poly.offsets[f] - dot(poly.normals[f], p);  // distance below face f
+    if (d < depth) {
+      depth = d;
+      ghost = p + poly.normals[f] * (2.0 * d);
+    }
+  }
+  return ghost;
+}
 
 Shell shell_points(const Polyhedron& poly, double dp, int layers, const std::vector<char>& covered) {
   Vec3 lo = poly.vertices[0], hi = lo;
@@ -86,10 +103,26 @@ ParamSet BlockParticles::describe() {
                                       "(default: the scene's only fluid material)");
   p.vector_list("faces").optional().doc("outward normals (scene frame, at t = 0) of the only faces that get "
                                         "particles, e.g. the top of a fixed slope (default: every face)");
+  p.choice("method", {"dbc", "mdbc"})
+      .default_value("dbc")
+      .doc("how the block particles get their density: dbc = continuity with the fluid, mdbc = extrapolated from "
+           "ghost nodes mirrored across the block's faces (English et al. 2022)");
+  p.choice("slip", {"no_slip", "free_slip"})
+      .default_value("no_slip")
+      .doc("free_slip (needs method mdbc): the viscous terms see the fluid's tangential velocity at the ghost node "
+           "and its mirrored normal velocity; no_slip: the block's own velocity (dbc, and mdbc with artificial "
+           "viscosity) or 2 v_block - v_ghost (mdbc with laminar or Laplacian viscosity)");
   return p;
 }
 
 BlockParticles::BlockParticles(const ParamValues& v) {
+  mdbc_ = v.has("method") && v.string("method") == "mdbc";
+  if (v.has("slip") && v.string("slip") == "free_slip") {
+    if (!mdbc_)
+      v.fail("slip", "free_slip needs \"method\": \"mdbc\": DBC block particles have no face normal to mirror the "
+                     "fluid velocity about");
+    slip_ = sph::WallSlip::free_slip;
+  }
   if (v.has("dp")) dp_param_ = v.real("dp");
   if (v.has("layers")) layers_param_ = static_cast<int>(v.integer("layers"));
   if (v.has("material")) material_name_ = v.string("material");
@@ -135,7 +168,10 @@ void BlockParticles::bind(World& world, const sph::FluidSettings& settings) {
   begin_.clear();
   end_.clear();
   all_.clear();
+  covered_.clear();
+  ghost_offset_.assign(s.size(), Vec3{});
   fitted_ = 0;
+  mirror_ = mdbc_ && (slip_ == sph::WallSlip::free_slip || settings.viscous_velocity);
   for (std::size_t k = 0; k < blocks_.size(); ++k) {
     const Polyhedron& poly = b.shape[blocks_[k]];
     std::vector<char> covered;
@@ -151,6 +187,7 @@ void BlockParticles::bind(World& world, const sph::FluidSettings& settings) {
                                                                 "\"faces\"");
       }
     }
+    covered_.push_back(covered);
     // The fluid's first row dp/2 outside the covered faces, as the block's first row is dp/2 inside them.
     fitted_ += fit_fluid_to_faces(world, blocks_[k], covered, material_);
     const Shell shell = shell_points(poly, dp_, layers_, covered);
@@ -160,6 +197,8 @@ void BlockParticles::bind(World& world, const sph::FluidSettings& settings) {
       world.bodies[bodies_[k]].params.fail("shape", "block '" + names_[k] + "' holds no boundary particle at dp = " +
                                                         std::to_string(dp_) + "; give block_particles a smaller \"dp\"");
     const std::size_t first = s.append(points.size());
+    ghost_offset_.resize(s.size());
+    for (std::size_t q = 0; q < points.size(); ++q) ghost_offset_[first + q] = ghost_offset(poly, points[q], covered);
     auto off = s.vector("block_offset");
     auto rho = s.scalar("density");
     auto m = s.scalar("mass");
@@ -179,6 +218,9 @@ void BlockParticles::bind(World& world, const sph::FluidSettings& settings) {
   cells_.assign(blocks_.size(), NeighbourGrid{});
   for (auto& c : cells_) c.configure(world.dim, settings.lo, settings.hi, radius, world.periodic);
   inv_rho_.assign(s.size(), 0.0);  // indexed like world.boundary (only my range is used)
+  ghost_offset_.resize(s.size());
+  ghost_.assign(mdbc_ ? s.size() : 0, Vec3{});
+  viscous_v_.assign(mirror_ ? s.size() : 0, Vec3{});
   ledger_.reset(blocks_.size());
   place(world);
   refresh_sets(world);
@@ -201,6 +243,7 @@ void BlockParticles::place(World& world) {
       const Vec3 r = rotate(q, off[p]);
       x[p] = wrap_periodic(world, X + r);  // a block may straddle a periodic boundary: its particles stay inside
       v[p] = V + cross(w, r);
+      if (mdbc_) ghost_[p] = wrap_periodic(world, X + rotate(q, ghost_offset_[p]));
     }
   }
 }
@@ -243,6 +286,48 @@ void BlockParticles::begin_step(World& world) {
   ledger_.begin_step();
 }
 
+void BlockParticles::hold_fluid(World& world, double time) {
+  ParticleStore& fluid = world.fluid;
+  const std::size_t n = fluid.size();
+  if (n == 0) return;
+  const BlockSet& b = *world.blocks;
+  const auto x = fluid.position();
+  inside_.resize(n);
+  for (std::size_t k = 0; k < blocks_.size(); ++k) {
+    const std::size_t blk = blocks_[k];
+    const Vec3 lo = b.bounds_lo[blk], hi = b.bounds_hi[blk], centre = b.position[blk];
+    const Quaternion q = b.orientation[blk];
+    const Polyhedron& poly = b.shape[blk];
+    std::size_t found = 0;
+#pragma omp parallel for schedule(static) reduction(+ : found) if (n >= sph::parallel_min)
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3 p = nearest_image(world, x[i], centre);
+      inside_[i] = p.x >= lo.x && p.y >= lo.y && p.z >= lo.z && p.x <= hi.x && p.y <= hi.y && p.z <= hi.z &&
+                   dda::plane_distance(poly, rotate_inverse(q, p - centre)) < 0.0;
+      found += inside_[i];
+    }
+    if (found == 0) continue;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!inside_[i]) continue;
+      const std::string what = "block '" + names_[k] + "'";
+      if (!covered_[k].empty()) {  // it may have come in where the scene left no particles
+        crossings_.count(world, i, k, what + ", whose \"faces\" leave some faces without particles", time);
+        continue;
+      }
+      // Onto the nearest face (the least negative face distance), in the block's frame.
+      const Vec3 arm = rotate_inverse(q, nearest_image(world, x[i], centre) - centre);
+      std::size_t face = 0;
+      for (std::size_t f = 1; f < poly.normals.size(); ++f)
+        if (dot(poly.normals[f], arm) - poly.offsets[f] > dot(poly.normals[face], arm) - poly.offsets[face]) face = f;
+      const Vec3 on_face = arm - poly.normals[face] * (dot(poly.normals[face], arm) - poly.offsets[face]);
+      const Vec3 r = rotate(q, on_face);
+      const Vec3 change = crossings_.put_back(world, i, centre + r, rotate(q, poly.normals[face]),
+                                              b.velocity[blk] + cross(b.angular_velocity[blk], r), k, what, time);
+      ledger_.add_impulse(world, blocks_, k, change * -1.0, cross(r, change * -1.0), time);  // action = reaction
+    }
+  }
+}
+
 void BlockParticles::refresh_sets(World& world) {
   ParticleStore& s = world.boundary;
   const BlockSet& b = *world.blocks;
@@ -264,7 +349,7 @@ void BlockParticles::refresh_sets(World& world) {
     set.fields = {v.data() + first, rho.data() + first, p.data() + first,
                   c.data() + first, m.data() + first, mat.data() + first};
     set.fields.inv_density = inv_rho_.data() + first;
-    set.viscous_velocity = set.fields.velocity;
+    set.viscous_velocity = mirror_ ? viscous_v_.data() + first : set.fields.velocity;
     set.rigid_body = true;
     const std::size_t blk = blocks_[k];
     set.body = {b.position[blk], b.bounds_lo[blk], b.bounds_hi[blk]};
@@ -272,9 +357,41 @@ void BlockParticles::refresh_sets(World& world) {
 }
 
 std::uint64_t BlockParticles::fill_wall_state(World& world, const sph::FluidView& fluid) {
+  refresh_sets(world);  // also right after a restart, which loads the positions
+  return mdbc_ ? fill_from_ghost_nodes(world, fluid) : fill_continuity(world, fluid);
+}
+
+// mDBC: density (then pressure) and the viscous velocity from the ghost nodes.
+std::uint64_t BlockParticles::fill_from_ghost_nodes(World& world, const sph::FluidView& fluid) {
+  ParticleStore& s = world.boundary;
+  const std::span<const Vec3> x = s.position();
+  const auto v = s.vector("velocity");
+  const auto rho = s.scalar("density");
+  const auto p = s.scalar("pressure");
+  const EquationOfState& eos = *world.materials[material_].eos;
+  std::uint64_t pairs = 0;
+  for (std::size_t k = 0; k < blocks_.size(); ++k) {
+    const std::size_t first = begin_[k], count = end_[k] - begin_[k];
+    const sph::GhostNodes nodes{x.subspan(first, count), std::span<const Vec3>(ghost_).subspan(first, count),
+                                v.subspan(first, count)};
+    pairs += sph::extrapolate_from_ghost_nodes(world.dim, nodes, fluid, *settings_.kernel, slip_,
+                                               p.subspan(first, count),
+                                               mirror_ ? std::span<Vec3>(viscous_v_).subspan(first, count)
+                                                       : std::span<Vec3>());
+    // The density from the EOS, never below rho0 (as DBC: a block never pulls the fluid).
+    for (std::size_t q = first; q < first + count; ++q) {
+      rho[q] = std::max(rho0_, eos.density_at(std::max(0.0, p[q])));
+      inv_rho_[q] = 1.0 / rho[q];
+    }
+  }
+  update_pressure(world);
+  return pairs;
+}
+
+// DBC: the block particles' continuity rates.
+std::uint64_t BlockParticles::fill_continuity(World& world, const sph::FluidView& fluid) {
   ParticleStore& s = world.boundary;
   const KernelTable& kernel = *settings_.kernel;
-  refresh_sets(world);  // also right after a restart, which loads the positions
   const auto v = s.vector("velocity");
   const auto rho = s.scalar("density");
   auto drho = s.scalar("density_rate");
@@ -308,10 +425,12 @@ void BlockParticles::advance_walls(World& world, double time, double dt) {
   const double rho0 = rho0_;
   const std::size_t n = all_.size();
   const Index* ids = all_.data();
+  if (!mdbc_) {  // mDBC filled the density in fill_wall_state
 #pragma omp parallel for schedule(static)
-  for (std::size_t q = 0; q < n; ++q) {
-    const Index p = ids[q];
-    rho[p] = std::max(rho0, rho_n[p] + dt * drho[p]);  // as DBC walls: never pull the fluid
+    for (std::size_t q = 0; q < n; ++q) {
+      const Index p = ids[q];
+      rho[p] = std::max(rho0, rho_n[p] + dt * drho[p]);  // as DBC walls: never pull the fluid
+    }
   }
   // The dda stage has already moved the blocks to the end of this host step.
   place(world);  // the grids follow in refresh_wall_sets or fill_wall_state, before any pass reads them
@@ -327,8 +446,13 @@ void BlockParticles::describe_passes(StagePlan& plan) const {
   plan.passes.push_back("fluid-block pass (block_particles " + names +
                         "): the stage's pressure + viscosity + continuity against each block's wall set; force and "
                         "torque on the block");
-  plan.passes.push_back("block-fluid pass (block_particles " + names + "): block-particle continuity, EOS, rigid "
-                        "placement");
+  plan.passes.push_back("block-fluid pass (block_particles " + names + "): " +
+                        (mdbc_ ? std::string("mDBC density at ghost nodes mirrored across the faces") +
+                                     (mirror_ ? (slip_ == sph::WallSlip::free_slip ? ", free-slip velocity"
+                                                                                   : ", no-slip velocity 2 v_block - v_ghost")
+                                              : "")
+                               : std::string("block-particle continuity")) +
+                        ", EOS, rigid placement");
   if (count) {
     char spacing[32];
     std::snprintf(spacing, sizeof spacing, "%g", dp_);

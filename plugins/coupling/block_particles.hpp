@@ -17,13 +17,28 @@
 //   F = -sum_f m_f a_f(block),  T = sum (x_b - X) x (-m_f a_fb),
 // handed back by take_reaction, once per step into external_force/torque
 // (block_link.hpp).
+// "method": "mdbc" gives the block particles the modified DBC instead
+// (sph/ghost_nodes.hpp): each takes the pressure extrapolated from a ghost
+// node mirrored across its nearest covered face, which moves with the block,
+// as a density through the EOS (never below rho0),
+// and, with laminar or Laplacian viscosity or "slip": "free_slip", the
+// mirrored viscous velocity.
+// At the end of every step a fluid particle inside a block (its polyhedron,
+// in the block's frame) has passed through the block's particles: it is put
+// back on the nearest face with its velocity into the block (relative to the
+// block) taken away, counted once (World::wall_crossings), and the first per
+// block warned. A block whose "faces" leave some faces without particles
+// does not wall the fluid there: fluid inside it is counted and warned only.
 #pragma once
+
 
 #include <vector>
 
 #include "block_link.hpp"
 #include "talus/neighbour_grid.hpp"
 #include "talus/sph/boundary_pass.hpp"
+#include "talus/sph/ghost_nodes.hpp"
+#include "talus/sph/wall_crossings.hpp"
 
 namespace talus::coupling {
 
@@ -40,6 +55,7 @@ class BlockParticles final : public sph::SphBoundary {
   std::span<const sph::WallSet> wall_sets() const override { return sets_; }
   void take_reaction(World& world, std::size_t set, const Vec3& force, const Vec3& torque) override;
   void advance_walls(World& world, double time, double dt) override;
+  void hold_fluid(World& world, double time) override;
   void describe_passes(StagePlan& plan) const override;
 
   // For tests: per block of this model, in the order of the bodies.
@@ -55,12 +71,17 @@ class BlockParticles final : public sph::SphBoundary {
   void refresh_sets(World& world);  // grids and wall sets at the current block particles
   void initial_density(World& world);
   void update_pressure(World& world);
+  std::uint64_t fill_continuity(World& world, const sph::FluidView& fluid);
+  std::uint64_t fill_from_ghost_nodes(World& world, const sph::FluidView& fluid);
 
   // Parameters.
   double dp_param_ = 0.0;  // 0: the fluid's dp
   int layers_param_ = 0;   // 0: enough to cover the kernel support
   std::string material_name_;
   std::vector<Vec3> faces_;  // outward normals of the faces that get particles (empty: all)
+  std::vector<std::vector<char>> covered_;  // per block: its faces with particles (empty: all have)
+  bool mdbc_ = false;
+  sph::WallSlip slip_ = sph::WallSlip::no_slip;
 
   std::vector<int> bodies_;
   std::vector<std::string> names_;
@@ -76,6 +97,12 @@ class BlockParticles final : public sph::SphBoundary {
   std::vector<NeighbourGrid> cells_;  // per block
   std::vector<sph::WallSet> sets_;         // per block
   std::vector<double> inv_rho_;            // 1/rho of my particles, refreshed by every fill_wall_state()
+  // mDBC, indexed like world.boundary (only my ranges are used): body-frame
+  // ghost offsets, ghost nodes now, viscous velocity.
+  std::vector<Vec3> ghost_offset_, ghost_, viscous_v_;
+  bool mirror_ = false;  // a mirrored viscous velocity (mdbc with laminar/Laplacian viscosity, or free slip)
+  std::vector<std::uint8_t> inside_;          // per fluid particle: inside the block being checked
+  sph::WallCrossings crossings_;              // fluid found inside my blocks (by block)
   ImpulseLedger ledger_;
 };
 

@@ -5,8 +5,8 @@
 //   fluid neighbours: artificial; laminar with mu_j of j's material; Laplacian;
 //     with mu_eff per particle, the three-pass laminar term with the scene's mean.
 //   wall neighbours: the same terms, the laminar one with mu_wall = mu_i
-//     (no-slip; Sums carry mu = mu_eff[i] with the three-pass viscosity), and the
-//     laminar and Laplacian terms read the velocity viscosity sees (visc_nb).
+//     (no-slip; Sums carry mu = mu_eff[i] with the three-pass viscosity), and
+//     every term reads the velocity viscosity sees (visc_nb).
 #pragma once
 
 #include <cstdint>
@@ -42,7 +42,9 @@ std::uint64_t with_viscosity_term(const ViscositySettings& v, const sph::Neighbo
     }
   }
   switch (v.model) {
-    case ViscosityModel::artificial: return run(sph::ArtificialViscosity{nb, v.alpha_h});
+    // Against a wall the artificial term sees the wall's viscous velocity too:
+    // its own unless the wall is free-slip (sph/boundary_pass.hpp).
+    case ViscosityModel::artificial: return run(sph::ArtificialViscosity{Side == Neighbour::wall ? visc_nb : nb, v.alpha_h});
     case ViscosityModel::laminar:
       return run(sph::LaminarViscosity<Side == Neighbour::wall>{visc_nb, v.material_mu, v.laminar_eta2});
     case ViscosityModel::laplacian: return run(sph::LaplacianViscosity{visc_nb, v.kernel});

@@ -263,6 +263,7 @@ void WcsphStage::advance(World& world, double dt) {
     case Integrator::symplectic:
     case Integrator::predictor_corrector: step_two_stage(world, dt); break;
   }
+  for (sph::SphBoundary* wall : walls_) wall->hold_fluid(world, world.time + dt);
   rates_valid_ = false;  // the state moved; the next step evaluates again
   const double deviation = max_density_deviation(world);
   if (deviation > worst_deviation_ || !std::isfinite(deviation)) {

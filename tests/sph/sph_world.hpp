@@ -117,10 +117,12 @@ struct SphWorld {
   }
 
   // A wall body with dynamic boundary particles: `shape_json` is the body's
-  // "shape" value, `extra` more body members (e.g. ", \"motion\": {...}").
+  // "shape" value, `extra` more body members (e.g. ", \"motion\": {...}"),
+  // `model_json` the model's parameters (e.g. {"method": "mdbc"}).
   talus::boundary::DynamicParticles* dbc_wall(const std::string& shape_json, int material = -1,
-                                              const std::string& extra = "") {
-    auto wall = std::make_unique<talus::boundary::DynamicParticles>(talus::ParamValues{});
+                                              const std::string& extra = "", const std::string& model_json = "{}") {
+    auto wall = std::make_unique<talus::boundary::DynamicParticles>(talus::params_from_json(
+        talus::boundary::DynamicParticles::describe(), model_json, world.dim));
     talus::Body body;
     body.name = "wall" + std::to_string(world.bodies.size());
     body.kind = talus::BodyKind::wall;

@@ -82,6 +82,9 @@ class TALUS_API World {
   std::uint64_t step = 0;
   double end_time = 0.0;
   std::uint64_t removed = 0;  // fluid particles that left the domain so far
+  // Fluid particles the wall models found inside a wall (each once per wall),
+  // since the run or its restart began.
+  std::uint64_t wall_crossings = 0;
   // Writers see a const World and may still warn: the log is not state.
   mutable WarningLog warnings;
 

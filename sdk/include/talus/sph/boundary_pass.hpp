@@ -19,6 +19,8 @@
 //   add_direct_forces(world, fluid, rates)
 //   advance_walls(world, t, dt)         wall state at time t = t^n + dt from the
 //                                       state saved by begin_step and the last rates
+// and, once the step has moved the fluid to t^{n+1}:
+//   hold_fluid(world, t^{n+1})          fluid found inside a wall put back on its surface
 // With summation density the stage adds sum_b m_b W_ib over every wall set to
 // rho_i before the force pass, after refresh_wall_sets (the first evaluation
 // after bind or a restart comes before any fill_wall_state).
@@ -48,8 +50,9 @@ struct FluidSettings {
   const KernelTable* kernel = nullptr;
   bool summation_density = false;
   Vec3 lo, hi;  // bounds the fluid's neighbour grid covers
-  // True when a pair term reads WallSet::viscous_velocity (laminar and
-  // Laplacian viscosity); when false a model may skip computing it.
+  // True with laminar and Laplacian viscosity, whose no-slip a model may
+  // impose with a mirrored WallSet::viscous_velocity; when false (artificial
+  // viscosity) a model gives its walls' own velocity, or a free-slip one.
   bool viscous_velocity = false;
 };
 
@@ -94,8 +97,10 @@ struct WallSet {
   // and artificial viscosity), density, pressure, sound_speed, mass, material,
   // inv_density (1/rho, refreshed with the density).
   Neighbours fields;
-  // The velocity the laminar and Laplacian viscosity see (a mirrored no-slip
-  // velocity); fields.velocity where the model has none.
+  // The velocity the viscous terms see (a mirrored no-slip or free-slip
+  // velocity); fields.velocity where the model has none. The artificial
+  // viscosity reads it too, so a model gives the wall's own velocity there
+  // unless the wall is free-slip.
   const Vec3* viscous_velocity = nullptr;
   bool rigid_body = false;  // then `body` holds and the stage sums the reaction
   RigidBodyFrame body;
@@ -127,6 +132,11 @@ class TALUS_API SphBoundary : public Boundary {
   // Moves the walls to `time` and advances their state by dt from the state
   // saved in begin_step with the rates of the last fill_wall_state().
   virtual void advance_walls(World& world, double time, double dt) = 0;
+  // After the stage moved the fluid to `time`, the end of its step: a fluid
+  // particle found inside the wall material has passed through the wall; the
+  // model puts it back on the wall surface, takes away its velocity into the
+  // wall, counts it once in World::wall_crossings and warns the first per wall.
+  virtual void hold_fluid(World& /*world*/, double /*time*/) {}
   // Largest stable time step this model allows (a penalty stiffness), s.
   virtual double stable_time_step(const World& /*world*/) const { return std::numeric_limits<double>::infinity(); }
   // What `talus plan` lists for this model's own passes.
