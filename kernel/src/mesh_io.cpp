@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "talus/error.hpp"
@@ -188,6 +189,31 @@ double TriangleMesh::distance(const Vec3& p, Vec3* closest) const {
   return best;
 }
 
+std::string TriangleMesh::closure_problem() const {
+  // Each edge of a closed, consistently oriented surface is walked once in
+  // each direction by the two triangles that share it.
+  std::map<std::pair<int, int>, std::size_t> first_use;  // directed edge -> the triangle that walks it
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const std::pair<int, int> edge{triangles[t][k], triangles[t][(k + 1) % 3]};
+      if (const auto [it, fresh] = first_use.emplace(edge, t); !fresh)
+        return "triangles " + std::to_string(it->second + 1) + " and " + std::to_string(t + 1) +
+               " run along their shared edge in the same direction: one of them is flipped (its normal points "
+               "the other way)";
+    }
+  for (const auto& [edge, t] : first_use)
+    if (!first_use.count({edge.second, edge.first}))
+      return "the surface is not closed: an edge of triangle " + std::to_string(t + 1) +
+             " belongs to no other triangle";
+  double six_volume = 0.0;
+  for (const auto& tri : triangles)
+    six_volume += dot(vertices[tri[0]], cross(vertices[tri[1]], vertices[tri[2]]));
+  if (!(six_volume > 0.0))
+    return "the triangles are clockwise seen from outside (the normals point inwards, the enclosed volume is "
+           "negative): reverse the order of every face's vertices";
+  return "";
+}
+
 TriangleMesh load_mesh(const std::string& path) {
   const std::string ext = extension(path);
   TriangleMesh m;
@@ -200,6 +226,7 @@ TriangleMesh load_mesh(const std::string& path) {
   if (m.triangles.empty()) bad(path, "the mesh has no triangles");
   for (const auto& p : m.vertices)
     if (!is_finite(p)) bad(path, "the mesh has a non-finite vertex coordinate");
+  if (const std::string problem = m.closure_problem(); !problem.empty()) bad(path, problem);
   return m;
 }
 

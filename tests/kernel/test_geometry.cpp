@@ -309,6 +309,25 @@ TEST(Mesh, ObjCubeContainsAndMeasures) {
   EXPECT_NEAR(dot(m.normal(0), {0, 0, -1}), 1.0, 1e-12);
 }
 
+// Walls, fills and the inside test need a closed surface whose normals all point outwards.
+TEST(Mesh, OpenFlippedOrInsideOutSurfacesAreRefusedWithTheReason) {
+  const std::string corners = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n";
+  auto refused = [&](const std::string& name, const std::string& faces, const std::string& words) {
+    const std::string path = std::string(TALUS_BINARY_DIR) + "/tests/" + name + ".obj";
+    test::write_file(path, corners + faces);
+    try {
+      load_mesh(path);
+      ADD_FAILURE() << name << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(name + ".obj"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  };
+  refused("open_box", "f 1 4 3 2\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n", "not closed");
+  refused("flipped_face", "f 1 4 3 2\nf 8 7 6 5\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n", "flipped");
+  refused("inside_out", "f 2 3 4 1\nf 8 7 6 5\nf 5 6 2 1\nf 6 7 3 2\nf 7 8 4 3\nf 8 5 1 4\n", "inwards");
+}
+
 TEST(Mesh, BadFilesNameTheFileAndLine) {
   const std::string path = std::string(TALUS_BINARY_DIR) + "/tests/bad_test.obj";
   test::write_file(path, "v 0 0 0\nv 1 0 0\nf 1 2 7\n");

@@ -21,10 +21,14 @@ struct TALUS_API TriangleMesh {
   bool contains(const Vec3& p) const;
   // Unsigned distance from p to the surface, with the closest point.
   double distance(const Vec3& p, Vec3* closest = nullptr) const;
+  // "" for a closed surface with every triangle counter-clockwise seen from
+  // outside; otherwise what is wrong (load_mesh refuses such a mesh).
+  std::string closure_problem() const;
 };
 
 // Reads .stl or .obj (decided by extension). OBJ polygons are fanned into
-// triangles. Throws InputError naming the file on any problem.
+// triangles. Throws InputError naming the file on any problem, an open or
+// inconsistently oriented surface included.
 TALUS_API TriangleMesh load_mesh(const std::string& path);
 
 }  // namespace talus
