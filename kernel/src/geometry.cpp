@@ -259,20 +259,20 @@ struct Solid {
   std::function<Vec3(const Vec3&)> surface;
 };
 
-// The point on the faces of the box [lo, hi] nearest p inside it: p moved to
-// its nearest face (the first axis on a tie).
+// The point on the faces of the box [lo, hi] nearest p inside it: p moved
+// onto its nearest face, or onto the edge or corner of the faces it is
+// equally near (to round-off), so that mirror images stay symmetric.
 Vec3 nearest_box_face(const Vec3& p, const Vec3& lo, const Vec3& hi, int dim) {
-  int axis = 0;
-  double depth = 1e300, to = 0.0;
-  for (int a = 0; a < dim; ++a)
-    for (const double face : {lo[a], hi[a]})
-      if (std::abs(p[a] - face) < depth) {
-        depth = std::abs(p[a] - face);
-        axis = a;
-        to = face;
-      }
+  double depth = 1e300;
+  for (int a = 0; a < dim; ++a) depth = std::min({depth, p[a] - lo[a], hi[a] - p[a]});
+  const double tie = depth + 1e-12 * (hi - lo).x;
   Vec3 s = p;
-  s[axis] = to;
+  for (int a = 0; a < dim; ++a) {
+    if (p[a] - lo[a] <= tie)
+      s[a] = lo[a];
+    else if (hi[a] - p[a] <= tie)
+      s[a] = hi[a];
+  }
   return s;
 }
 

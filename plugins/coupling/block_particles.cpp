@@ -44,18 +44,18 @@ struct Shell {
 };
 
 // mDBC ghost node of a body-frame point inside the polyhedron: its mirror
-// image across the nearest of the faces in `covered` (empty: all).
-Vec3 ghost_offset(const Polyhedron& poly, const Vec3& p, const std::vector<char>& covered) {
-  double depth = 1e300;
+// image across the nearest of the faces in `covered` (empty: all), or across
+// all the faces it is equally near (to round-off: through their edge or
+// corner), so that the images of a symmetric block stay symmetric.
+Vec3 ghost_offset(const Polyhedron& poly, const Vec3& p, const std::vector<char>& covered, double dp) {
+  auto depth_below = [&](std::size_t f) { return poly.offsets[f] - dot(poly.normals[f], p); };
+  double nearest = 1e300;
+  for (std::size_t f = 0; f < poly.normals.size(); ++f)
+    if (covered.empty() || covered[f]) nearest = std::min(nearest, depth_below(f));
   Vec3 ghost = p;
-  for (std::size_t f = 0; f < poly.normals.size(); ++f) {
-    if (!covered.empty() && !covered[f]) continue;
-    const double d = poly.offsets[f] - dot(poly.normals[f], p);  // distance below face f
-    if (d < depth) {
-      depth = d;
-      ghost = p + poly.normals[f] * (2.0 * d);
-    }
-  }
+  for (std::size_t f = 0; f < poly.normals.size(); ++f)
+    if ((covered.empty() || covered[f]) && depth_below(f) <= nearest + 1e-9 * dp)
+      ghost += poly.normals[f] * (2.0 * depth_below(f));
   return ghost;
 }
 
@@ -198,7 +198,8 @@ void BlockParticles::bind(World& world, const sph::FluidSettings& settings) {
                                                         std::to_string(dp_) + "; give block_particles a smaller \"dp\"");
     const std::size_t first = s.append(points.size());
     ghost_offset_.resize(s.size());
-    for (std::size_t q = 0; q < points.size(); ++q) ghost_offset_[first + q] = ghost_offset(poly, points[q], covered);
+    for (std::size_t q = 0; q < points.size(); ++q)
+      ghost_offset_[first + q] = ghost_offset(poly, points[q], covered, dp_);
     auto off = s.vector("block_offset");
     auto rho = s.scalar("density");
     auto m = s.scalar("mass");
@@ -311,7 +312,7 @@ void BlockParticles::hold_fluid(World& world, double time) {
       if (!inside_[i]) continue;
       const std::string what = "block '" + names_[k] + "'";
       if (!covered_[k].empty()) {  // it may have come in where the scene left no particles
-        crossings_.count(world, i, k, what + ", whose \"faces\" leave some faces without particles", time);
+        crossings_.count(world, i, k, what + " (its \"faces\" leave some faces without particles)", time);
         continue;
       }
       // Onto the nearest face (the least negative face distance), in the block's frame.
