@@ -36,6 +36,9 @@ def main():
     parser.add_argument("--reuse", action="store_true",
                         help="judge runs already stored under --out (same scene) again without running talus: "
                              "for new tolerances, gates or report layout")
+    parser.add_argument("--walls", choices=["dbc", "mdbc"], default=None,
+                        help="run every case that has particle walls (dynamic_particles, block_particles) with this "
+                             "wall method; the option label says so, cases without such walls are skipped")
     args = parser.parse_args()
 
     cases = registry.load_cases()
@@ -58,7 +61,7 @@ def main():
     results = []
     for case in cases:
         results.extend(runner.run_case(case, args.talus, root, out, quick=args.quick, threads=args.threads,
-                                      reuse=args.reuse))
+                                      reuse=args.reuse, walls=args.walls))
     # Re-running some cases updates an existing report: the other cases keep their stored results.
     all_cases = registry.load_cases()
     if args.case and not args.quick:

@@ -77,9 +77,27 @@ def failed_at(text):
     return (int(m.group(1)), float(m.group(2))) if m else (0, float("nan"))
 
 
-def run_case(case, talus, root, out, quick=False, threads=2, reuse=False):
+# The particle wall models that take a "method" (dynamic_particles, block_particles: dbc or mdbc).
+PARTICLE_WALLS = ("dynamic_particles", "block_particles")
+
+
+def with_wall_method(scene, method):
+    """The scene with every particle wall's boundary "method" set to `method` (verify.py --walls); the number of
+    walls changed (0: the case has none, and --walls does not apply to it)."""
+    changed = 0
+    for body in scene.get("bodies", []):
+        boundary = body.get("boundary")
+        if isinstance(boundary, dict) and boundary.get("type") in PARTICLE_WALLS:
+            boundary["method"] = method
+            changed += 1
+    return changed
+
+
+def run_case(case, talus, root, out, quick=False, threads=2, reuse=False, walls=None):
     """Runs the case's ladder (one rung with quick) and judges each run. With reuse, a rung whose folder already
-    holds a summary of the same scene is judged again without running talus (new tolerances or gates)."""
+    holds a summary of the same scene is judged again without running talus (new tolerances or gates). With walls
+    ("dbc" or "mdbc"), every particle wall of the case's scenes uses that method, and the option label says so; a
+    case without particle walls is skipped."""
     ladder = list(case.LADDER)
     if quick:
         ladder = [ladder[getattr(case, "QUICK_INDEX", 0)]]
@@ -89,14 +107,20 @@ def run_case(case, talus, root, out, quick=False, threads=2, reuse=False):
     for option in option_grid(case, quick):
         previous = None
         for resolution in ladder:
-            result = Result(case.NAME, label(option), resolution, tolerance=case.TOLERANCE.get(resolution, float("nan")),
-                            hard=hard)
-            tag = "".join(c if c.isalnum() or c in "-_." else "_" for c in label(option))
-            directory = os.path.join(out, "runs", case.NAME, tag, f"res_{resolution:g}")
-            os.makedirs(directory, exist_ok=True)
             with open(os.path.join(root, case.SCENE)) as f:
                 template = json.load(f)
             scene = case.configure(copy.deepcopy(template), resolution, option)
+            shown = dict(option)
+            if walls:
+                if not with_wall_method(scene, walls):
+                    print(f"verify: {case.NAME}: no particle walls, --walls {walls} does not apply", flush=True)
+                    return results
+                shown["walls"] = walls
+            result = Result(case.NAME, label(shown), resolution, tolerance=case.TOLERANCE.get(resolution, float("nan")),
+                            hard=hard)
+            tag = "".join(c if c.isalnum() or c in "-_." else "_" for c in label(shown))
+            directory = os.path.join(out, "runs", case.NAME, tag, f"res_{resolution:g}")
+            os.makedirs(directory, exist_ok=True)
             if hasattr(case, "prepare"):
                 case.prepare(directory, scene, resolution)  # files the scene names beside it (a release raster)
             if quick and hasattr(case, "QUICK_END"):
@@ -108,7 +132,7 @@ def run_case(case, talus, root, out, quick=False, threads=2, reuse=False):
                 with open(scene_path) as f:
                     previous_scene = json.load(f)
             if previous_scene == scene:
-                print(f"verify: {case.NAME} [{label(option)}] resolution {resolution:g}: judging the stored run", flush=True)
+                print(f"verify: {case.NAME} [{label(shown)}] resolution {resolution:g}: judging the stored run", flush=True)
                 proc = subprocess.CompletedProcess([], 0, "", "")
                 elapsed = float("nan")
             else:
@@ -118,7 +142,7 @@ def run_case(case, talus, root, out, quick=False, threads=2, reuse=False):
                     os.remove(summary_path)  # never judge a stale summary
                 command = [talus, "run", scene_path, "--out", os.path.join(directory, "out"), "--quiet",
                            "--threads", str(threads), "--summary", summary_path]
-                print(f"verify: {case.NAME} [{label(option)}] resolution {resolution:g} ...", flush=True)
+                print(f"verify: {case.NAME} [{label(shown)}] resolution {resolution:g} ...", flush=True)
                 start = time.monotonic()
                 proc = subprocess.run(command, capture_output=True, text=True)
                 elapsed = time.monotonic() - start
