@@ -128,6 +128,20 @@ TEST(BadScenes, MeshErrorNamesTheJsonPointer) {
                  "bad.obj:4: face refers to vertex 4 but only 3 vertices are defined so far");
 }
 
+TEST(BadScenes, AWallMeshWithAFlippedTriangleNamesTheJsonPointer) {
+  json s = shipped("hydrostatic_2d");
+  s["bodies"][1]["shape"] = {{"mesh", {{"file", "../flipped.obj"}}}};
+  const std::string obj = "v 0 0 -1\nv 1 0 -1\nv 1 1 -1\nv 0 1 -1\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                          "f 1 4 3 2\nf 8 7 6 5\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+  expect_refused(refuse("flipped_mesh", s, "flipped.obj", obj), "/bodies/1/shape/mesh/file", "is flipped");
+}
+
+TEST(BadScenes, FreeSlipOnAWallModelWithoutNormalsNamesTheJsonPointer) {
+  json s = shipped("hydrostatic_2d");
+  s["bodies"][1]["boundary"]["slip"] = "free_slip";  // dynamic_particles, method dbc
+  expect_refused(refuse("free_slip_dbc", s), "/bodies/1/boundary/slip", "free_slip needs \"method\": \"mdbc\"");
+}
+
 TEST(BadScenes, DemErrorNamesTheJsonPointer) {
   json s = shipped("runout_valley");
   s["pipeline"][0]["terrain"]["dem"]["file"] = "../bad.asc";
