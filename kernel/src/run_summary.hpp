@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "phase_times.hpp"
+
 namespace talus {
 
 class Stage;
@@ -23,8 +25,9 @@ struct RunSummary {
   const std::vector<std::string>& finish_lines;  // the stages' finish() lines
   std::uint64_t steps;                           // taken by this process (a restart counts from its checkpoint)
   std::uint64_t particle_steps;
-  double wall_seconds;
+  double wall_seconds;  // from the first step's set-up on (the scene's own set-up is in phases.setup)
   double peak_memory_mib;
+  const PhaseTimes& phases;
 };
 
 // The peak resident memory of this process so far, MiB.

@@ -107,7 +107,10 @@ int Simulation::run(const RunOptions& options) {
   const std::uint64_t first_step = world_.step;
   std::uint64_t particle_steps = 0;
   double wall_at_last_checkpoint = 0.0;
+  phases_.stages.assign(stages_.size(), 0.0);
+  phases_.setup += since_start_.lap();
   if (options.restart.empty()) write_due_outputs(true);
+  phases_.outputs += since_start_.lap();
   if (!options.quiet)
     std::printf("talus: running %s: %zu fluid particles, %zu wall particles%s, to t = %s s; output in %s\n",
                 scene_.path.c_str(), world_.fluid.size(), world_.boundary.size(),
@@ -117,18 +120,26 @@ int Simulation::run(const RunOptions& options) {
 
   try {
     while (world_.time < world_.end_time * (1.0 - 1e-12) && world_.step < max_steps) {
+      phases_.host += since_start_.lap();
       double dt = std::min(dt_max, world_.end_time - world_.time);
-      for (auto& stage : stages_) dt = std::min(dt, stage->stable_time_step(world_));
+      for (std::size_t i = 0; i < stages_.size(); ++i) {  // a stage may evaluate its rates for its bound
+        dt = std::min(dt, stages_[i]->stable_time_step(world_));
+        phases_.stages[i] += since_start_.lap();
+      }
       if (!(dt > 0.0) || !std::isfinite(dt))
         throw RunError("error: step " + std::to_string(world_.step) + " (t = " + fixed(world_.time, 6) +
                        " s): the stages report no usable time step (dt = " + text::number(dt) + ")");
-      for (auto& stage : stages_) stage->advance(world_, dt);
+      for (std::size_t i = 0; i < stages_.size(); ++i) {
+        stages_[i]->advance(world_, dt);
+        phases_.stages[i] += since_start_.lap();
+      }
       world_.time += dt;
       ++world_.step;
       particle_steps += world_.fluid.size();
       remove_escaped_particles();
       if (world_.step % resort_every_ == 0) resort_particles();
       check_finite();
+      phases_.host += since_start_.lap();
       write_due_outputs(false);
       print_new_warnings();
       if ((checkpoint_every > 0 && world_.time >= next_checkpoint_time - time_eps) ||
@@ -138,6 +149,7 @@ int Simulation::run(const RunOptions& options) {
         if (checkpoint_every > 0)
           next_checkpoint_time = next_due(next_checkpoint_time, checkpoint_every, world_.time, time_eps);
       }
+      phases_.outputs += since_start_.lap();
       std::string status;
       if (options.verbose)
         for (std::size_t i = 0; i < stages_.size(); ++i) {
@@ -173,16 +185,18 @@ int Simulation::run(const RunOptions& options) {
     throw;
   }
   progress.finish();
+  phases_.host += since_start_.lap();
   if (last_output_time_ < world_.time) write_due_outputs(true);
   for (auto& w : writers_) w.writer->close(world_);
   print_new_warnings();
   std::vector<std::string> finish_lines;
   for (auto& stage : stages_)
     for (auto& line : stage->finish(world_, output_directory_)) finish_lines.push_back(line);
+  phases_.outputs += since_start_.lap();
 
   const double wall = progress.elapsed();
   const RunSummary summary{scene_.path, world_, stages_, stage_names_, writers_, finish_lines,
-                           world_.step - first_step, particle_steps, wall, peak_memory_mib()};
+                           world_.step - first_step, particle_steps, wall, peak_memory_mib(), phases_};
   if (!options.summary_file.empty()) write_summary_file(summary, options.summary_file);
   if (!options.quiet) print_summary(summary);
   return 0;

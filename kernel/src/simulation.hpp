@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "phase_times.hpp"
 #include "scene.hpp"
 #include "talus/neighbour_grid.hpp"
 #include "talus/world.hpp"
@@ -79,6 +80,8 @@ class TALUS_API Simulation {
   void write_due_outputs(bool force);
   std::string last_output() const;
 
+  Stopwatch since_start_;  // first member: set-up is timed from the scene on
+  PhaseTimes phases_;
   PluginRegistry& registry_;
   Scene scene_;
   std::vector<std::unique_ptr<Model>> models_;  // eos, rheology, boundary, contact, kernel: destroyed first

@@ -252,6 +252,25 @@ TEST(Cli, ParticlesLeavingTheDomainAreWarnedAboutOncePerBody) {
   EXPECT_NE(loud.output.find("       warning: step ", done), std::string::npos) << loud.output;
 }
 
+// The summary says where the wall time went: set-up, each stage, outputs, the host's own work.
+TEST(Cli, SummaryGivesTheTimeOfEachPhase) {
+  const std::string dir = fresh_dir("phases");
+  const auto r = run_command(exe + " run " + scenes + "/ballistic.json --out " + dir + " --summary " + dir + ".json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("       time: set-up "), std::string::npos) << r.output;
+  const auto summary = nlohmann::json::parse(read_file(dir + ".json"));
+  const auto& phases = summary["phases_s"];
+  double total = phases["setup"].get<double>() + phases["outputs"].get<double>() + phases["host"].get<double>();
+  ASSERT_EQ(phases["stages"].size(), summary["stages"].size()) << summary.dump();
+  for (const auto& [name, seconds] : phases["stages"].items()) {
+    EXPECT_TRUE(summary["stages"].contains(name)) << name;
+    EXPECT_GE(seconds.get<double>(), 0.0);
+    total += seconds.get<double>();
+  }
+  // The phases cover the run: at least its stepping wall time, less than the whole process would allow.
+  EXPECT_GE(total, 0.99 * summary["wall_seconds"].get<double>()) << summary.dump();
+}
+
 TEST(Cli, UnwritableOutputFolderIsARunError) {
   const auto r = run_command(exe + " run " + scenes + "/ballistic.json --quiet --out /proc/version/out");
   EXPECT_EQ(r.exit_code, 1) << r.output;
