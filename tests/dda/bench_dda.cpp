@@ -83,5 +83,3 @@ void BM_BlocksSettling(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_BlocksSettling)->Args({8, 8})->Args({16, 8})->Args({16, 16})->Unit(benchmark::kMillisecond);
-
-BENCHMARK_MAIN();

@@ -67,4 +67,3 @@ void Query(benchmark::State& state) {
 
 BENCHMARK(Build)->Args({2, 400})->Args({3, 50})->Unit(benchmark::kMillisecond);
 BENCHMARK(Query)->Args({2, 400})->Args({3, 50})->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_MAIN();

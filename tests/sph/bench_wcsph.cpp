@@ -90,5 +90,3 @@ BENCHMARK(dam_break_3d)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(5.0);
-
-BENCHMARK_MAIN();
