@@ -175,7 +175,8 @@ void DynamicParticles::setup(World& world, std::span<const int> bodies) {
     region_.push_back(wall_region(v.alternative("shape"), v.alternative_values("shape"), dp, world.dim, layers,
                                   world.lo, world.hi));
     surface_.push_back(surface);
-    crossing_reach_ = crossing_reach_ > 0.0 ? std::min(crossing_reach_, 0.75 * dp) : 0.75 * dp;
+    // Every point of a wall's material lies within sqrt(3)/2 spacings of one of its particles.
+    crossing_reach_ = std::max(crossing_reach_, dp);
     moves_ = moves_ || motion_.back().moves();
   }
   count_ = s.size() - first_;

@@ -37,7 +37,7 @@
 // the artificial viscosity sees too, so that a free-slip wall never shears).
 // The ghost nodes move with the wall's prescribed motion.
 //
-// At the end of every step a fluid particle closer than 0.75 dp to a wall
+// At the end of every step a fluid particle closer than one spacing to a wall
 // particle is tested against the wall's shape (geometry.hpp wall_region, in
 // the wall's frame at t = 0): one inside the wall material has passed
 // through it. It is put back on the nearest point of the wall surface with
@@ -98,7 +98,7 @@ class DynamicParticles final : public sph::SphBoundary {
   std::vector<std::function<Vec3(const Vec3&)>> surface_;  // per body slot: the nearest wall surface point (t = 0)
   sph::WallCrossings crossings_;                          // fluid found inside my walls (by body slot)
   std::vector<std::int32_t> near_slot_;                   // per fluid particle: the slot of a wall within reach, or -1
-  double crossing_reach_ = 0.0;                           // 0.75 dp, the smallest dp of my walls
+  double crossing_reach_ = 0.0;                           // the largest dp of my walls
   std::vector<int> slot_of_body_;              // world body index -> slot (-1: not mine)
   bool moves_ = false;
   sph::FluidSettings settings_;
