@@ -47,7 +47,6 @@
 #pragma once
 
 #include <functional>
-
 #include <vector>
 
 #include "talus/neighbour_grid.hpp"

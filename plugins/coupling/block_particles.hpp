@@ -20,9 +20,8 @@
 // "method": "mdbc" gives the block particles the modified DBC instead
 // (sph/ghost_nodes.hpp): each takes the pressure extrapolated from a ghost
 // node mirrored across its nearest covered face, which moves with the block,
-// as a density through the EOS (never below rho0),
-// and, with laminar or Laplacian viscosity or "slip": "free_slip", the
-// mirrored viscous velocity.
+// as a density through the EOS (never below rho0), and, with laminar or
+// Laplacian viscosity or "slip": "free_slip", the mirrored viscous velocity.
 // At the end of every step a fluid particle inside a block (its polyhedron,
 // in the block's frame) has passed through the block's particles: it is put
 // back on the nearest face with its velocity into the block (relative to the
@@ -30,7 +29,6 @@
 // block warned. A block whose "faces" leave some faces without particles
 // does not wall the fluid there: fluid inside it is counted and warned only.
 #pragma once
-
 
 #include <vector>
 
