@@ -1,5 +1,6 @@
 // The fluid-fluid passes of the wcsph stage: the fused force/continuity pass
-// (one neighbour traversal) and the summation-density pass, and the order of
+// (one neighbour traversal, each pair once for both particles: mutual_pass.hpp)
+// and the summation-density pass, and the order of
 // all passes of one rate evaluation. The scene's choices are resolved here,
 // once per evaluation, into one template instantiation; nothing in the pair
 // loop branches on them.
@@ -9,6 +10,7 @@
 #include "fluid_sums.hpp"
 #include "talus/eos.hpp"
 #include "talus/sph/fluid_terms.hpp"
+#include "talus/sph/mutual_pass.hpp"
 #include "talus/sph/pair_loop.hpp"
 #include "talus/world.hpp"
 #include "viscosity_term.hpp"
@@ -25,6 +27,7 @@ struct PassContext {
   const double* mu;  // per material
   Vec3 gravity;
   sph::Neighbours nb;  // the fluid's fields, with 1/rho and rho/c^2
+  sph::ReactionBuffers& reactions;
 };
 
 template <class... Terms>
@@ -35,6 +38,7 @@ std::uint64_t run_force_pass(const PassContext& ctx, const Terms&... terms) {
   auto start = [&](Index i) {
     FluidSums s;
     s.v = f.v[i];
+    s.m = f.m[i];
     s.rho = f.rho[i];
     s.inv_rho = ctx.nb.inv_density[i];
     s.p = f.p[i];
@@ -44,13 +48,9 @@ std::uint64_t run_force_pass(const PassContext& ctx, const Terms&... terms) {
     s.mat = f.mat[i];
     return s;
   };
-  auto finish = [&](Index i, const FluidSums& s) {
-    f.a[i] = s.acc + g;
-    f.drho[i] = s.drho;
-    f.visc[i] = s.visc;
-  };
-  const std::span<const Vec3> x = f.x;
-  return sph::pair_pass(x.size(), x, ctx.cells, ctx.world.kernel, sph::same_set, start, finish, terms...);
+  auto finish = [&](Index i) { f.a[i] += g; };
+  const sph::FluidReactions out{f.a.data(), f.drho.data(), f.visc.data()};
+  return sph::mutual_pair_pass(ctx.cells, ctx.world.kernel, out, ctx.reactions, start, finish, terms...);
 }
 
 template <class... Terms>
@@ -91,7 +91,8 @@ std::uint64_t WcsphStage::fluid_pass(World& world) {
   nb.rho_over_c2 = rho_over_c2_.data();
   // The three-pass viscosity's force pass reads mu_eff of both particles; start() then takes mu_eff[i].
   if (per_particle_viscosity_) nb.viscosity = world.fluid.scalar("mu_eff").data();
-  const PassContext ctx{world, f, cells_, per_particle_viscosity_ ? nullptr : material_mu_.data(), world.gravity, nb};
+  const PassContext ctx{world,          f, cells_, per_particle_viscosity_ ? nullptr : material_mu_.data(),
+                        world.gravity, nb, reactions_};
   const sph::PressureForce pressure{nb};
   const double delta_h_c0 = delta_ * h_ * c0_max_;
   return with_viscosity_term<Neighbour::fluid>(viscosity_settings(world), nb, nb, [&](const auto& viscous) {

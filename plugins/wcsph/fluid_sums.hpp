@@ -10,6 +10,7 @@ namespace talus::wcsph {
 
 struct FluidSums {
   Vec3 v;             // v_i
+  double m = 0.0;     // m_i (the mutual pass gives j the reaction m_i ...)
   double rho = 0.0;   // rho_i
   double inv_rho = 0.0;  // 1/rho_i
   double p = 0.0;     // p_i

@@ -47,7 +47,7 @@ std::uint64_t with_viscosity_term(const ViscositySettings& v, const sph::Neighbo
     case ViscosityModel::artificial: return run(sph::ArtificialViscosity{Side == Neighbour::wall ? visc_nb : nb, v.alpha_h});
     case ViscosityModel::laminar:
       return run(sph::LaminarViscosity<Side == Neighbour::wall>{visc_nb, v.material_mu, v.laminar_eta2});
-    case ViscosityModel::laplacian: return run(sph::LaplacianViscosity{visc_nb, v.kernel});
+    case ViscosityModel::laplacian: return run(sph::LaplacianViscosity{visc_nb, v.kernel, v.material_mu});
   }
   return 0;
 }

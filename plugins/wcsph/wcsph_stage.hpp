@@ -24,6 +24,7 @@
 #include "talus/neighbour_grid.hpp"
 #include "talus/sph/boundary_pass.hpp"
 #include "talus/sph/fluid_terms.hpp"
+#include "talus/sph/mutual_pass.hpp"
 #include "talus/sph/pair_term.hpp"
 #include "talus/stage.hpp"
 #include "viscosity_term.hpp"
@@ -123,6 +124,7 @@ class WcsphStage final : public Stage {
   NeighbourGrid cells_;
   Vec3 period_;  // domain length on periodic axes (lever arms of rigid-body wall sets)
   std::vector<double> inv_rho_, rho_over_c2_;  // scratch, refilled every evaluation (grow only)
+  sph::ReactionBuffers reactions_;             // the force pass's per-thread reactions (grow only)
 
   // Step state.
   std::uint64_t verlet_counter_ = 0;

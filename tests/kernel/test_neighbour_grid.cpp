@@ -100,6 +100,31 @@ std::vector<Found> one_radius(const Cloud& c, double radius) {
   return out;
 }
 
+// The later-neighbour query from every slot, each pair found entered from
+// both sides: every pair of distinct points (and image) exactly once.
+std::vector<Found> later_pairs_both_ways(const Cloud& c, double radius) {
+  NeighbourGrid grid;
+  grid.configure(c.dim, c.lo, c.hi, radius, c.periodic);
+  grid.build(c.pos);
+  std::vector<Found> out;
+  const auto order = grid.order();
+  for (std::size_t s = 0; s < order.size(); ++s) {
+    const Index i = order[s];
+    grid.for_each_later_neighbour(s, radius, [&](Index j, const Vec3& dx, double r2) {
+      EXPECT_NEAR(r2, norm2(dx), 1e-15);
+      out.push_back(found(i, j, dx));
+      out.push_back(found(j, i, -dx));
+    });
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<Found> without_self(std::vector<Found> pairs) {
+  std::erase_if(pairs, [](const Found& f) { return std::get<0>(f) == std::get<1>(f); });
+  return pairs;
+}
+
 // Gather: reach = own radius. Candidates: the pairs with r < max(R_i, R_j), kept by the caller.
 std::vector<Found> own_radii(NeighbourGrid& grid, const Cloud& c, bool candidates) {
   grid.build(c.pos, c.radius);
@@ -136,6 +161,16 @@ TEST_P(OneRadius, FindsExactlyTheNeighboursWithinTheRadius) {
   EXPECT_EQ(one_radius(c, radius), expected);
 }
 
+TEST_P(OneRadius, LaterNeighboursGiveEveryPairOnce) {
+  const auto [dim, periodic, outside] = GetParam();
+  const double radius = 0.11;
+  const Cloud c = random_cloud(dim, {-0.3, 0.1, 0.0}, {0.9, 0.7, 0.5}, periodic, outside, 1200,
+                               5u + dim + 2 * periodic[0] + 4 * periodic[1] + 8 * periodic[2] + 16 * outside);
+  const auto expected = without_self(brute_force(c, radius, [&](std::size_t, std::size_t) { return radius; }));
+  EXPECT_GT(expected.size(), c.pos.size() * 3);
+  EXPECT_EQ(later_pairs_both_ways(c, radius), expected);
+}
+
 INSTANTIATE_TEST_SUITE_P(Layouts, OneRadius,
                          ::testing::Values(Layout{2, {false, false, false}, false},
                                            Layout{2, {false, false, false}, true}, Layout{2, {true, false, false}, true},
@@ -148,6 +183,7 @@ TEST(NeighbourGrid, ReportsEveryImageOnAPeriodShorterThanTwoRadii) {
   const Cloud c = random_cloud(2, {0.0, 0.0, 0.0}, {0.15, 1.0, 0.0}, {true, false, false}, false, 300, 11u);
   const auto expected = brute_force(c, 0.1, [](std::size_t, std::size_t) { return 0.1; });
   EXPECT_EQ(one_radius(c, 0.1), expected);
+  EXPECT_EQ(later_pairs_both_ways(c, 0.1), without_self(expected));
 }
 
 class OwnRadii : public ::testing::TestWithParam<std::tuple<bool, bool, bool>> {};

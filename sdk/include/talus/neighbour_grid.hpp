@@ -135,6 +135,21 @@ class NeighbourGrid {
       query<false, false>(x, reach, f);
   }
 
+  // Every point j within `reach` of the binned point in sorted slot `slot`
+  // whose own slot comes later: each pair of binned points (and each image of
+  // one on a periodic axis) is reported from exactly one side, its earlier
+  // slot, for a pass that evaluates a pair once for both particles.
+  // dx = x_slot - x_j as in for_each_neighbour.
+  template <class F>
+  TALUS_PAIR_INLINE void for_each_later_neighbour(std::size_t slot, double reach, F&& f) const {
+    const Vec3 x{xs_[slot], ys_[slot], zs_[slot]};
+    const Index first = static_cast<Index>(slot + 1);
+    if (any_periodic_)
+      query<true, false>(x, reach, f, first);
+    else
+      query<false, false>(x, reach, f, first);
+  }
+
   // Every point j of a level within max(own, the level's largest radius) of x:
   // a superset of the pairs with r < max(R_x, R_j), which the caller keeps.
   template <class F>
@@ -221,21 +236,23 @@ class NeighbourGrid {
     int count = 0;
   };
 
+  // Only slots from `first` on are scanned (a later-neighbour query).
   template <bool Periodic, bool Candidates, class F>
-  TALUS_PAIR_INLINE void query(const Vec3& at, double own, F& f) const {
+  TALUS_PAIR_INLINE void query(const Vec3& at, double own, F& f, Index first = 0) const {
     const Vec3 x{at.x, at.y, dim_ == 3 ? at.z : 0.0};
     Hits hits;
     for (std::size_t k = 0; k < level_.size(); ++k) {
       if (!(level_max_[k] > 0.0)) continue;  // an empty level
       const double reach = Candidates ? std::max(own, level_max_[k]) : own;
-      query_level<Periodic>(level_[k], x, reach, hits, f);
+      query_level<Periodic>(level_[k], x, reach, first, hits, f);
     }
     flush<Periodic>(hits, x, f);
   }
 
   // The cells of level L within `reach` of x, row by row.
   template <bool Periodic, class F>
-  TALUS_PAIR_INLINE void query_level(const Level& L, const Vec3& x, double reach, Hits& hits, F& f) const {
+  TALUS_PAIR_INLINE void query_level(const Level& L, const Vec3& x, double reach, Index first, Hits& hits,
+                                     F& f) const {
     const double r2max = reach * reach;
     int z0 = 0, z1 = 0, y0, y1;
     if (dim_ == 3) cell_range(L, x.z, reach, 2, z0, z1);
@@ -257,12 +274,12 @@ class NeighbourGrid {
         const std::size_t row = L.offset + (static_cast<std::size_t>(rz) * L.n[1] + ry) * L.n[0];
         if (!periodic_[0]) {
           const int image = Periodic ? image_of(hits, x, f, 0, iy, iz) : 0;
-          scan<Periodic>(row + x0, row + x1 + 1, x, image, r2max, hits, f);
+          scan<Periodic>(row + x0, row + x1 + 1, x, image, r2max, first, hits, f);
         } else {
           for (int cx = x0; cx <= x1; ++cx) {
             int ix = 0;
             const int rx = wrap(L, cx, 0, ix);
-            scan<Periodic>(row + rx, row + rx + 1, x, image_of(hits, x, f, ix, iy, iz), r2max, hits, f);
+            scan<Periodic>(row + rx, row + rx + 1, x, image_of(hits, x, f, ix, iy, iz), r2max, first, hits, f);
           }
         }
       }
@@ -310,17 +327,17 @@ class NeighbourGrid {
     h.count = 0;
   }
 
-  // Tests the sorted points of cells [c0, c1) without a branch on the
-  // outcome; hands full chunks to f.
+  // Tests the sorted points of cells [c0, c1) from slot `first` on without a
+  // branch on the outcome; hands full chunks to f.
   template <bool Periodic, class F>
-  TALUS_PAIR_INLINE void scan(std::size_t c0, std::size_t c1, const Vec3& x, int image, double r2max, Hits& hits,
-                              F& f) const {
+  TALUS_PAIR_INLINE void scan(std::size_t c0, std::size_t c1, const Vec3& x, int image, double r2max, Index first,
+                              Hits& hits, F& f) const {
     const Index e = cell_start_[c1];
     Vec3 q = x;
     if constexpr (Periodic) q -= hits.shift[image];
     // The count lives in a register: kept in `hits`, every candidate would wait on a store and reload.
     int count = hits.count;
-    for (Index s = cell_start_[c0]; s < e; ++s) {
+    for (Index s = std::max(cell_start_[c0], first); s < e; ++s) {
       const double dx = q.x - xs_[s], dy = q.y - ys_[s], dz = q.z - zs_[s];
       const double r2 = dx * dx + dy * dy + dz * dz;
       hits.s[count] = s;

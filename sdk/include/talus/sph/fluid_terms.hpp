@@ -4,8 +4,10 @@
 // fluid-wall passes over the wall sets of boundary models. i is the particle
 // summing, j its neighbour; dx = x_i - x_j, grad = grad_i W_ij. Each term
 // reads the neighbour's fields through a Neighbours view and the i-state from
-// the pass's Sums (duck-typed members: v, rho, inv_rho, p, c, mu, kh, mat; the
-// sums acc, drho, visc).
+// the pass's Sums (duck-typed members: v, m, rho, inv_rho, p, c, mu, kh, mat;
+// the sums acc, drho, visc). The terms of the fluid-fluid pass also have the
+// mutual form of sph/mutual_pass.hpp: one evaluation per pair, j's share
+// written to a FluidReactions r.
 #pragma once
 
 #include <algorithm>
@@ -41,6 +43,14 @@ struct PressureForce {
     const double f = nb.mass[j] * (s.p + nb.pressure[j]) * (s.inv_rho * nb.inv_density[j]);
     s.acc -= q.grad() * f;
   }
+  // grad_j W_ji = -grad_i W_ij: j gets +m_i times the shared factor.
+  template <class S, class R>
+  TALUS_PAIR_INLINE void mutual(const Pair& q, S& s, R& r) const {
+    const std::size_t j = q.j;
+    const Vec3 f = q.grad() * ((s.p + nb.pressure[j]) * (s.inv_rho * nb.inv_density[j]));
+    s.acc -= f * nb.mass[j];
+    r.acc[j] += f * s.m;
+  }
 };
 
 // Monaghan (1992) artificial viscosity, as in DualSPHysics:
@@ -61,6 +71,19 @@ struct ArtificialViscosity {
     const double approaching = std::min(rate, 0.0);
     const double f = nb.mass[j] * alpha_h * approaching * (s.c + nb.sound_speed[j]) / (s.rho + nb.density[j]);
     s.acc += q.grad() * f;
+  }
+  // v_ji . x_ji = v_ij . x_ij: the same Pi_ij, with the opposite gradient for j.
+  template <class S, class R>
+  TALUS_PAIR_INLINE void mutual(const Pair& q, S& s, R& r) const {
+    const std::size_t j = q.j;
+    const double rate = dot(s.v - nb.velocity[j], q.dx) * q.inv_r2e;
+    const double speed = std::abs(rate);
+    s.visc = std::max(s.visc, speed);
+    r.visc[j] = std::max(r.visc[j], speed);
+    const double approaching = std::min(rate, 0.0);
+    const Vec3 f = q.grad() * (alpha_h * approaching * (s.c + nb.sound_speed[j]) / (s.rho + nb.density[j]));
+    s.acc += f * nb.mass[j];
+    r.acc[j] -= f * s.m;
   }
 };
 
@@ -93,6 +116,20 @@ struct LaminarViscosity {
     const double f = nb.mass[j] * (s.mu + mu_j) * (s.inv_rho * nb.inv_density[j]) * laminar_weight(q, eta2);
     s.acc += vij * f;
   }
+  // Fluid pairs only: v_ji = -v_ij with the same weight.
+  template <class S, class R>
+  TALUS_PAIR_INLINE void mutual(const Pair& q, S& s, R& r) const {
+    static_assert(!WallSide, "a wall set is not a fluid neighbour");
+    const std::size_t j = q.j;
+    const Vec3 vij = s.v - nb.velocity[j];
+    const double speed = std::abs(dot(vij, q.dx) * q.inv_r2e);
+    s.visc = std::max(s.visc, speed);
+    r.visc[j] = std::max(r.visc[j], speed);
+    const Vec3 f = vij * ((s.mu + mu_of_material[nb.material[j]]) * (s.inv_rho * nb.inv_density[j]) *
+                          laminar_weight(q, eta2));
+    s.acc += f * nb.mass[j];
+    r.acc[j] -= f * s.m;
+  }
 };
 
 // How a pair's viscosity is formed from mu_eff of both particles.
@@ -111,19 +148,34 @@ struct LaminarViscosityField {
   Neighbours nb;  // nb.viscosity = mu_eff
   double eta2 = 0.0;  // laminar_eta2(h)
   template <class S>
+  TALUS_PAIR_INLINE double pair_viscosity(const Pair& q, const S& s) const {
+    const double mu_j = nb.viscosity[q.j];
+    if constexpr (Mean == ViscosityMean::arithmetic)
+      return s.mu + mu_j;
+    else
+      return s.mu + mu_j > 0.0 ? 4.0 * s.mu * mu_j / (s.mu + mu_j) : 0.0;
+  }
+  template <class S>
   TALUS_PAIR_INLINE void pair(const Pair& q, S& s) const {
     const std::size_t j = q.j;
-    const double mu_j = nb.viscosity[j];
-    double mu_pair;
-    if constexpr (Mean == ViscosityMean::arithmetic)
-      mu_pair = s.mu + mu_j;
-    else
-      mu_pair = s.mu + mu_j > 0.0 ? 4.0 * s.mu * mu_j / (s.mu + mu_j) : 0.0;
+    const double mu_pair = pair_viscosity(q, s);
     const Vec3 vij = s.v - nb.velocity[j];
     const double rate = dot(vij, q.dx) * q.inv_r2e;
     s.visc = std::max(s.visc, std::abs(rate));
     const double f = nb.mass[j] * mu_pair * (s.inv_rho * nb.inv_density[j]) * laminar_weight(q, eta2);
     s.acc += vij * f;
+  }
+  template <class S, class R>
+  TALUS_PAIR_INLINE void mutual(const Pair& q, S& s, R& r) const {
+    const std::size_t j = q.j;
+    const double mu_pair = pair_viscosity(q, s);
+    const Vec3 vij = s.v - nb.velocity[j];
+    const double speed = std::abs(dot(vij, q.dx) * q.inv_r2e);
+    s.visc = std::max(s.visc, speed);
+    r.visc[j] = std::max(r.visc[j], speed);
+    const Vec3 f = vij * (mu_pair * (s.inv_rho * nb.inv_density[j]) * laminar_weight(q, eta2));
+    s.acc += f * nb.mass[j];
+    r.acc[j] -= f * s.m;
   }
 };
 
@@ -206,11 +258,20 @@ struct LaplacianViscosity {
   static constexpr bool uses_value = false, uses_gradient = false;
   Neighbours nb;
   const KernelTable* kernel = nullptr;
+  const double* mu_of_material = nullptr;  // mu_j of a fluid neighbour (the mutual form)
   template <class S>
   TALUS_PAIR_INLINE void pair(const Pair& q, S& s) const {
     const std::size_t j = q.j;
     const double f = s.mu * s.inv_rho * nb.mass[j] * nb.inv_density[j] * kernel->laplacian(std::sqrt(q.r2));
     s.acc += (nb.velocity[j] - s.v) * f;
+  }
+  // Not symmetric in mu: j's share has mu_j / rho_j.
+  template <class S, class R>
+  TALUS_PAIR_INLINE void mutual(const Pair& q, S& s, R& r) const {
+    const std::size_t j = q.j;
+    const Vec3 vji = (nb.velocity[j] - s.v) * (s.inv_rho * nb.inv_density[j] * kernel->laplacian(std::sqrt(q.r2)));
+    s.acc += vji * (s.mu * nb.mass[j]);
+    r.acc[j] -= vji * (mu_of_material[nb.material[j]] * s.m);
   }
 };
 
@@ -227,6 +288,14 @@ struct Continuity {
   TALUS_PAIR_INLINE void pair(const Pair& q, S& s) const {
     const std::size_t j = q.j;
     s.drho += s.rho * nb.mass[j] * nb.inv_density[j] * dot(s.v - nb.velocity[j], q.grad());
+  }
+  // v_ji . grad_j W_ji = v_ij . grad_i W_ij: drho_j += rho_j (m_i/rho_i) times the same.
+  template <class S, class R>
+  TALUS_PAIR_INLINE void mutual(const Pair& q, S& s, R& r) const {
+    const std::size_t j = q.j;
+    const double vg = dot(s.v - nb.velocity[j], q.grad());
+    s.drho += s.rho * nb.mass[j] * nb.inv_density[j] * vg;
+    r.drho[j] += nb.density[j] * s.m * s.inv_rho * vg;
   }
 };
 
@@ -246,8 +315,9 @@ struct DensityDiffusion {
   Neighbours nb;
   double delta_h_c0 = 0.0;  // delta * h * c0
   Vec3 gravity;
+  // delta h c0 2 (rho_i - rho_j - hydrostatic part) (x_ij . grad)/(r^2 + eta^2).
   template <class S>
-  TALUS_PAIR_INLINE void pair(const Pair& q, S& s) const {
+  TALUS_PAIR_INLINE double flux(const Pair& q, const S& s) const {
     const std::size_t j = q.j;
     const double same_material = s.mat == nb.material[j] ? 1.0 : 0.0;
     double drho = (s.rho - nb.density[j]) * same_material;
@@ -255,7 +325,18 @@ struct DensityDiffusion {
       const double kbar = 0.5 * (s.kh + nb.rho_over_c2[j]);
       drho -= kbar * dot(gravity, q.dx) * same_material;
     }
-    s.drho += delta_h_c0 * 2.0 * drho * (q.r2 * q.dw_r) * q.inv_r2e * nb.mass[j] * nb.inv_density[j];
+    return delta_h_c0 * 2.0 * drho * (q.r2 * q.dw_r) * q.inv_r2e;
+  }
+  template <class S>
+  TALUS_PAIR_INLINE void pair(const Pair& q, S& s) const {
+    s.drho += flux(q, s) * nb.mass[q.j] * nb.inv_density[q.j];
+  }
+  // The difference and x_ij change sign for j: drho_j -= the flux times m_i/rho_i.
+  template <class S, class R>
+  TALUS_PAIR_INLINE void mutual(const Pair& q, S& s, R& r) const {
+    const double f = flux(q, s);
+    s.drho += f * nb.mass[q.j] * nb.inv_density[q.j];
+    r.drho[q.j] -= f * s.m * s.inv_rho;
   }
 };
 

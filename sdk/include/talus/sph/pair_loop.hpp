@@ -6,7 +6,9 @@
 // A pass is gather-style: particle i of set A sums over its neighbours j of
 // set B (A and B may be the same set), so every particle writes only its own
 // results: parallel over i without atomics, and deterministic whatever the
-// thread count (DESIGN.md principle 8).
+// thread count (DESIGN.md principle 8). A pass of one set against itself
+// whose terms are symmetric in i and j can instead evaluate each pair once
+// for both particles: sph/mutual_pass.hpp (the wcsph fluid-fluid force pass).
 //
 //   struct MySums { Vec3 v; double rho; Vec3 acc; };     // i-state and sums
 //   auto start  = [&](Index i) { return MySums{vel[i], rho[i], {}}; };

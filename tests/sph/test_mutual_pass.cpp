@@ -1,0 +1,271 @@
+// The mutual (one evaluation per pair) form of every fluid-fluid term against
+// its gather form: the same accelerations, density rates and viscous rates on
+// a jittered two-material cloud with random velocities, closed and periodic,
+// 2D and 3D, on one and two threads; and bit-for-bit the same result when a
+// run is repeated at a given thread count.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "cubic_spline.hpp"
+#include "muller.hpp"
+#include "talus/kernel_table.hpp"
+#include "talus/neighbour_grid.hpp"
+#include "talus/params.hpp"
+#include "talus/sph/fluid_terms.hpp"
+#include "talus/sph/mutual_pass.hpp"
+#include "talus/sph/pair_loop.hpp"
+
+namespace talus {
+namespace {
+
+// The i-state and sums the terms read (as wcsph's FluidSums).
+struct Sums {
+  Vec3 v;
+  double m = 0, rho = 0, inv_rho = 0, p = 0, c = 0, mu = 0, kh = 0;
+  std::int32_t mat = 0;
+  Vec3 acc;
+  double drho = 0, visc = 0;
+};
+
+struct Cloud {
+  int dim = 3;
+  double dp = 0.01;
+  Vec3 lo, hi;
+  std::array<bool, 3> periodic{};
+  std::vector<Vec3> x, v;
+  std::vector<double> m, rho, p, c, inv_rho, kh, mu_eff;
+  std::vector<std::int32_t> mat;
+  double mu_of_material[2] = {1e-3, 5.0};
+
+  sph::Neighbours nb() const {
+    return {v.data(), rho.data(), p.data(), c.data(), m.data(), mat.data(), inv_rho.data(), kh.data(), mu_eff.data()};
+  }
+};
+
+// A jittered lattice of `per_axis` points per axis, the upper third of a
+// second, denser material, with random velocities and densities.
+Cloud make_cloud(int dim, int per_axis, std::array<bool, 3> periodic, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Cloud c;
+  c.dim = dim;
+  c.periodic = periodic;
+  c.lo = {0, 0, 0};
+  c.hi = {per_axis * c.dp, per_axis * c.dp, dim == 3 ? per_axis * c.dp : 0.0};
+  const int nz = dim == 3 ? per_axis : 1;
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < per_axis; ++j)
+      for (int i = 0; i < per_axis; ++i) {
+        Vec3 x{(i + 0.5 + 0.3 * u(rng)) * c.dp, (j + 0.5 + 0.3 * u(rng)) * c.dp, 0.0};
+        if (dim == 3) x.z = (k + 0.5 + 0.3 * u(rng)) * c.dp;
+        const bool heavy = j > 2 * per_axis / 3;
+        const double rho0 = heavy ? 1900.0 : 1000.0, sound = heavy ? 30.0 : 20.0;
+        const double rho = rho0 * (1.0 + 0.01 * u(rng));
+        c.x.push_back(x);
+        c.v.push_back({u(rng), u(rng), dim == 3 ? u(rng) : 0.0});
+        c.m.push_back(rho0 * std::pow(c.dp, dim) * (1.0 + 0.05 * u(rng)));
+        c.rho.push_back(rho);
+        c.p.push_back(sound * sound * (rho - rho0));
+        c.c.push_back(sound);
+        c.inv_rho.push_back(1.0 / rho);
+        c.kh.push_back(rho / (sound * sound));
+        c.mat.push_back(heavy ? 1 : 0);
+        c.mu_eff.push_back(heavy ? 2.0 + u(rng) : 1e-3);
+      }
+  return c;
+}
+
+struct Rates {
+  std::vector<Vec3> acc;
+  std::vector<double> drho, visc;
+};
+
+Sums start_of(const Cloud& c, Index i) {
+  Sums s;
+  s.v = c.v[i];
+  s.m = c.m[i];
+  s.rho = c.rho[i];
+  s.inv_rho = c.inv_rho[i];
+  s.p = c.p[i];
+  s.c = c.c[i];
+  s.mu = c.mu_eff[i];
+  s.kh = c.kh[i];
+  s.mat = c.mat[i];
+  return s;
+}
+
+template <class Term>
+Rates gather(const Cloud& c, const NeighbourGrid& grid, const KernelTable& kernel, const Term& term) {
+  Rates r{std::vector<Vec3>(c.x.size()), std::vector<double>(c.x.size()), std::vector<double>(c.x.size())};
+  auto start = [&](Index i) { return start_of(c, i); };
+  auto finish = [&](Index i, const Sums& s) {
+    r.acc[i] = s.acc;
+    r.drho[i] = s.drho;
+    r.visc[i] = s.visc;
+  };
+  sph::pair_pass(c.x.size(), std::span<const Vec3>(c.x), grid, kernel, sph::same_set, start, finish, term);
+  return r;
+}
+
+template <class Term>
+Rates mutual(const Cloud& c, const NeighbourGrid& grid, const KernelTable& kernel, const Term& term) {
+  Rates r{std::vector<Vec3>(c.x.size(), Vec3{9, 9, 9}), std::vector<double>(c.x.size(), 9.0),
+          std::vector<double>(c.x.size(), 9.0)};  // not zero: the pass must clear its output
+  sph::ReactionBuffers buffers;
+  auto start = [&](Index i) { return start_of(c, i); };
+  sph::mutual_pair_pass(grid, kernel, {r.acc.data(), r.drho.data(), r.visc.data()}, buffers, start, [](Index) {},
+                        term);
+  return r;
+}
+
+double largest(const std::vector<Vec3>& a) {
+  double m = 0.0;
+  for (const Vec3& v : a) m = std::max(m, norm(v));
+  return m;
+}
+double largest(const std::vector<double>& a) {
+  double m = 0.0;
+  for (double v : a) m = std::max(m, std::abs(v));
+  return m;
+}
+
+// Relative to the largest value of each rate: the two forms add the same
+// pair contributions in a different order.
+void expect_same_rates(const Rates& got, const Rates& want) {
+  const double acc_scale = largest(want.acc), drho_scale = largest(want.drho), visc_scale = largest(want.visc);
+  ASSERT_EQ(got.acc.size(), want.acc.size());
+  int bad = 0;
+  for (std::size_t i = 0; i < want.acc.size() && bad < 5; ++i) {
+    const bool ok = norm(got.acc[i] - want.acc[i]) <= 1e-12 * acc_scale &&
+                    std::abs(got.drho[i] - want.drho[i]) <= 1e-12 * drho_scale &&
+                    std::abs(got.visc[i] - want.visc[i]) <= 1e-12 * visc_scale;
+    if (!ok) {
+      ++bad;
+      ADD_FAILURE() << "particle " << i << ": acc (" << got.acc[i].x << ", " << got.acc[i].y << ", " << got.acc[i].z
+                    << ") vs (" << want.acc[i].x << ", " << want.acc[i].y << ", " << want.acc[i].z << "), drho "
+                    << got.drho[i] << " vs " << want.drho[i] << ", visc " << got.visc[i] << " vs " << want.visc[i];
+    }
+  }
+}
+
+struct Layout {
+  int dim;
+  std::array<bool, 3> periodic;
+  int threads;
+};
+
+class MutualPass : public ::testing::TestWithParam<Layout> {
+ protected:
+  void SetUp() override {
+    const Layout l = GetParam();
+    omp_set_num_threads(l.threads);
+    // 3D: 18^3 = 5832 points (above sph::parallel_min, so two threads really split the pass); 2D: 80^2.
+    cloud = make_cloud(l.dim, l.dim == 3 ? 18 : 80, l.periodic, 11u + l.dim + 2 * l.periodic[0]);
+    const ParamValues none;
+    spline = std::make_unique<kernels::CubicSpline>(none);
+    muller = std::make_unique<kernels::Muller>(none);
+    const double h = 1.3 * cloud.dp;
+    kernel = KernelTable(*spline, l.dim, h);
+    laplacian_kernel = KernelTable(*muller, l.dim, h);
+    grid.configure(l.dim, cloud.lo, cloud.hi, kernel.support_radius(), l.periodic);
+    grid.build(cloud.x);
+    muller_grid.configure(l.dim, cloud.lo, cloud.hi, laplacian_kernel.support_radius(), l.periodic);
+    muller_grid.build(cloud.x);
+  }
+  void TearDown() override { omp_set_num_threads(omp_get_num_procs()); }
+
+  template <class Term>
+  void expect_mutual_matches_gather(const Term& term) {
+    const Rates want = gather(cloud, grid, kernel, term);
+    ASSERT_GT(largest(want.acc) + largest(want.drho), 0.0);  // the term really acts
+    expect_same_rates(mutual(cloud, grid, kernel, term), want);
+  }
+
+  // Sums carry mu = mu_eff[i]: with the materials' values, as for a Newtonian fluid.
+  void use_material_viscosities() {
+    for (std::size_t i = 0; i < cloud.x.size(); ++i) cloud.mu_eff[i] = cloud.mu_of_material[cloud.mat[i]];
+  }
+
+  Cloud cloud;
+  std::unique_ptr<SmoothingKernel> spline, muller;
+  KernelTable kernel, laplacian_kernel;
+  NeighbourGrid grid, muller_grid;
+};
+
+TEST_P(MutualPass, PressureForce) { expect_mutual_matches_gather(sph::PressureForce{cloud.nb()}); }
+
+TEST_P(MutualPass, ArtificialViscosity) {
+  expect_mutual_matches_gather(sph::ArtificialViscosity{cloud.nb(), 0.1 * kernel.h()});
+}
+
+TEST_P(MutualPass, LaminarViscosityOfTheMaterials) {
+  // As the wcsph stage's start(): Sums carry mu of i's material.
+  use_material_viscosities();
+  expect_mutual_matches_gather(sph::LaminarViscosity<false>{cloud.nb(), cloud.mu_of_material,
+                                                            sph::laminar_eta2(kernel.h())});
+}
+
+TEST_P(MutualPass, LaminarViscosityFieldArithmeticAndHarmonic) {
+  const double eta2 = sph::laminar_eta2(kernel.h());
+  expect_mutual_matches_gather(sph::LaminarViscosityField<sph::ViscosityMean::arithmetic>{cloud.nb(), eta2});
+  expect_mutual_matches_gather(sph::LaminarViscosityField<sph::ViscosityMean::harmonic>{cloud.nb(), eta2});
+}
+
+TEST_P(MutualPass, LaplacianViscosityWithEachParticlesOwnViscosity) {
+  use_material_viscosities();
+  const sph::LaplacianViscosity term{cloud.nb(), &laplacian_kernel, cloud.mu_of_material};
+  const Rates want = gather(cloud, muller_grid, laplacian_kernel, term);
+  ASSERT_GT(largest(want.acc), 0.0);
+  expect_same_rates(mutual(cloud, muller_grid, laplacian_kernel, term), want);
+}
+
+TEST_P(MutualPass, ContinuityAcrossTheDensityJump) { expect_mutual_matches_gather(sph::Continuity{cloud.nb()}); }
+
+TEST_P(MutualPass, DensityDiffusionMolteniAndFourtakas) {
+  const double delta_h_c0 = 0.1 * kernel.h() * 30.0;
+  expect_mutual_matches_gather(sph::DensityDiffusion<false>{cloud.nb(), delta_h_c0, {0, -9.81, 0}});
+  expect_mutual_matches_gather(sph::DensityDiffusion<true>{cloud.nb(), delta_h_c0, {0, -9.81, 0}});
+}
+
+TEST_P(MutualPass, CountsEveryPairFromBothSidesAndRepeatsBitForBit) {
+  const sph::PressureForce pressure{cloud.nb()};
+  const sph::ArtificialViscosity viscosity{cloud.nb(), 0.1 * kernel.h()};
+  const sph::Continuity continuity{cloud.nb()};
+  auto start = [&](Index i) { return start_of(cloud, i); };
+  const std::uint64_t gathered = sph::pair_pass(cloud.x.size(), std::span<const Vec3>(cloud.x), grid, kernel, sph::same_set, start,
+                            [](Index, const Sums&) {}, pressure);
+  std::uint64_t first = 0, second = 0;
+  Rates a, b;
+  {
+    Rates r{std::vector<Vec3>(cloud.x.size()), std::vector<double>(cloud.x.size()),
+            std::vector<double>(cloud.x.size())};
+    sph::ReactionBuffers buffers;
+    first = sph::mutual_pair_pass(grid, kernel, {r.acc.data(), r.drho.data(), r.visc.data()}, buffers, start,
+                                  [](Index) {}, pressure, viscosity, continuity);
+    a = r;
+    second = sph::mutual_pair_pass(grid, kernel, {r.acc.data(), r.drho.data(), r.visc.data()}, buffers, start,
+                                   [](Index) {}, pressure, viscosity, continuity);
+    b = r;
+  }
+  EXPECT_EQ(first, gathered);
+  EXPECT_EQ(second, gathered);
+  for (std::size_t i = 0; i < cloud.x.size(); ++i) {
+    ASSERT_EQ(a.acc[i], b.acc[i]) << i;
+    ASSERT_EQ(a.drho[i], b.drho[i]) << i;
+    ASSERT_EQ(a.visc[i], b.visc[i]) << i;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Layouts, MutualPass,
+                         ::testing::Values(Layout{2, {false, false, false}, 1}, Layout{2, {true, false, false}, 2},
+                                           Layout{3, {false, false, false}, 1}, Layout{3, {false, false, false}, 2},
+                                           Layout{3, {true, true, false}, 2}));
+
+}  // namespace
+}  // namespace talus
