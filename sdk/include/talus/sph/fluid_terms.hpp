@@ -7,7 +7,7 @@
 // the pass's Sums (duck-typed members: v, m, rho, inv_rho, p, c, mu, kh, mat;
 // the sums acc, drho, visc). The terms of the fluid-fluid pass also have the
 // mutual form of sph/mutual_pass.hpp: one evaluation per pair, j's share
-// written to a FluidReactions r.
+// added to a PairReaction r.
 #pragma once
 
 #include <algorithm>
@@ -49,7 +49,7 @@ struct PressureForce {
     const std::size_t j = q.j;
     const Vec3 f = q.grad() * ((s.p + nb.pressure[j]) * (s.inv_rho * nb.inv_density[j]));
     s.acc -= f * nb.mass[j];
-    r.acc[j] += f * s.m;
+    r.acc += f * s.m;
   }
 };
 
@@ -79,11 +79,11 @@ struct ArtificialViscosity {
     const double rate = dot(s.v - nb.velocity[j], q.dx) * q.inv_r2e;
     const double speed = std::abs(rate);
     s.visc = std::max(s.visc, speed);
-    r.visc[j] = std::max(r.visc[j], speed);
+    r.visc = std::max(r.visc, speed);
     const double approaching = std::min(rate, 0.0);
     const Vec3 f = q.grad() * (alpha_h * approaching * (s.c + nb.sound_speed[j]) / (s.rho + nb.density[j]));
     s.acc += f * nb.mass[j];
-    r.acc[j] -= f * s.m;
+    r.acc -= f * s.m;
   }
 };
 
@@ -124,11 +124,11 @@ struct LaminarViscosity {
     const Vec3 vij = s.v - nb.velocity[j];
     const double speed = std::abs(dot(vij, q.dx) * q.inv_r2e);
     s.visc = std::max(s.visc, speed);
-    r.visc[j] = std::max(r.visc[j], speed);
+    r.visc = std::max(r.visc, speed);
     const Vec3 f = vij * ((s.mu + mu_of_material[nb.material[j]]) * (s.inv_rho * nb.inv_density[j]) *
                           laminar_weight(q, eta2));
     s.acc += f * nb.mass[j];
-    r.acc[j] -= f * s.m;
+    r.acc -= f * s.m;
   }
 };
 
@@ -172,10 +172,10 @@ struct LaminarViscosityField {
     const Vec3 vij = s.v - nb.velocity[j];
     const double speed = std::abs(dot(vij, q.dx) * q.inv_r2e);
     s.visc = std::max(s.visc, speed);
-    r.visc[j] = std::max(r.visc[j], speed);
+    r.visc = std::max(r.visc, speed);
     const Vec3 f = vij * (mu_pair * (s.inv_rho * nb.inv_density[j]) * laminar_weight(q, eta2));
     s.acc += f * nb.mass[j];
-    r.acc[j] -= f * s.m;
+    r.acc -= f * s.m;
   }
 };
 
@@ -271,7 +271,7 @@ struct LaplacianViscosity {
     const std::size_t j = q.j;
     const Vec3 vji = (nb.velocity[j] - s.v) * (s.inv_rho * nb.inv_density[j] * kernel->laplacian(std::sqrt(q.r2)));
     s.acc += vji * (s.mu * nb.mass[j]);
-    r.acc[j] -= vji * (mu_of_material[nb.material[j]] * s.m);
+    r.acc -= vji * (mu_of_material[nb.material[j]] * s.m);
   }
 };
 
@@ -295,7 +295,7 @@ struct Continuity {
     const std::size_t j = q.j;
     const double vg = dot(s.v - nb.velocity[j], q.grad());
     s.drho += s.rho * nb.mass[j] * nb.inv_density[j] * vg;
-    r.drho[j] += nb.density[j] * s.m * s.inv_rho * vg;
+    r.drho += nb.density[j] * s.m * s.inv_rho * vg;
   }
 };
 
@@ -336,7 +336,7 @@ struct DensityDiffusion {
   TALUS_PAIR_INLINE void mutual(const Pair& q, S& s, R& r) const {
     const double f = flux(q, s);
     s.drho += f * nb.mass[q.j] * nb.inv_density[q.j];
-    r.drho[q.j] -= f * s.m * s.inv_rho;
+    r.drho -= f * s.m * s.inv_rho;
   }
 };
 

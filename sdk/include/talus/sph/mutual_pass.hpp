@@ -10,11 +10,12 @@
 // 0 writes into the pass's output arrays, every other thread into a buffer of
 // its own, and the buffers are added to the output in thread order after the
 // scan: no atomics, and the same result in every run at a given thread count
-// (static split of the sorted slots; DESIGN.md principle 8).
+// (a fixed split of the sorted slots; DESIGN.md principle 8).
 //
 // A mutual term has, besides its gather pair(q, s), a
-//   template <class S> void mutual(const Pair& q, S& s, FluidReactions& r) const
-// that adds i's share to s and j's (q.j) to r.
+//   template <class S, class R> void mutual(const Pair& q, S& s, R& r) const
+// that adds i's share to s and j's (q.j) to r, a PairReaction the pass adds
+// to j once all terms of the pair have run (one store per pair, not per term).
 #pragma once
 
 #include <algorithm>
@@ -30,6 +31,13 @@
 #include "talus/vec3.hpp"
 
 namespace talus::sph {
+
+// What one pair gives its later particle j (a maximum for visc).
+struct PairReaction {
+  Vec3 acc;
+  double drho = 0.0;
+  double visc = 0.0;
+};
 
 // Per-particle accumulators of a force pass: acceleration, density rate, and
 // the largest |v_ij . x_ij|/(r^2 + eta^2) (a maximum, not a sum).
@@ -103,7 +111,9 @@ std::uint64_t mutual_pair_pass(const NeighbourGrid& cells, const KernelTable& ke
     FluidReactions mine = t == 0 ? out : buffers.thread(t);
     mine.clear(n);
 #pragma omp barrier
-#pragma omp for schedule(static)
+    // Chunks dealt round-robin: the free surface (fewer neighbours) is shared
+    // out instead of falling to one thread, and the split is still fixed.
+#pragma omp for schedule(static, 512)
     for (std::int64_t ss = 0; ss < static_cast<std::int64_t>(n); ++ss) {
       const std::size_t slot = static_cast<std::size_t>(ss);
       const Index i = order[slot];
@@ -124,7 +134,9 @@ std::uint64_t mutual_pair_pass(const NeighbourGrid& cells, const KernelTable& ke
           p.inv_r2e = 1.0 / (r2 + eta2);
         }
         ++count;
-        (terms.mutual(p, sums, mine), ...);
+        PairReaction rj;
+        (terms.mutual(p, sums, rj), ...);
+        mine.add(j, rj.acc, rj.drho, rj.visc);
       });
       mine.add(i, sums.acc, sums.drho, sums.visc);
       pairs += 2 * count;
