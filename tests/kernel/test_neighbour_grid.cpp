@@ -234,6 +234,38 @@ TEST(NeighbourGrid, RebuildsWithMoreLevelsAndFewerPoints) {
   EXPECT_EQ(grid.largest_radius(), 0.05);
 }
 
+// A sparse set (a thin wall along two faces of a large box and a few points
+// beyond the bounds) queried from a lattice through the whole box: queries in
+// empty blocks find nothing, queries next to a filled block miss nothing.
+TEST(NeighbourGrid, QueriesFromEmptyRegionsOfASparseGrid) {
+  for (int dim : {2, 3}) {
+    std::vector<Vec3> pos;
+    for (int i = 0; i < 60; ++i) {
+      pos.push_back({0.017 * i, 0.0, dim == 3 ? 0.3 : 0.0});  // along the floor
+      pos.push_back({0.0, 0.013 * i, dim == 3 ? 0.011 * i : 0.0});  // up a side
+    }
+    pos.push_back({1.3, 1.25, dim == 3 ? 1.1 : 0.0});  // outside the bounds, in the edge cells
+    const double radius = 0.05;
+    NeighbourGrid grid;
+    grid.configure(dim, {0, 0, 0}, {1, 1, 1}, radius);
+    grid.build(pos);
+    int queries_with_hits = 0;
+    for (double qz = -0.05; qz <= (dim == 3 ? 1.2 : -0.05); qz += 0.037)
+      for (double qy = -0.05; qy <= 1.3; qy += 0.021)
+        for (double qx = -0.05; qx <= 1.35; qx += 0.019) {
+          const Vec3 q{qx, qy, dim == 3 ? qz : 0.0};
+          std::vector<Index> want, got;
+          for (std::size_t j = 0; j < pos.size(); ++j)
+            if (norm2(q - pos[j]) < radius * radius) want.push_back(static_cast<Index>(j));
+          grid.for_each_neighbour(q, radius, [&](Index j, const Vec3&, double) { got.push_back(j); });
+          std::sort(got.begin(), got.end());
+          ASSERT_EQ(got, want) << dim << "D query at " << qx << ", " << qy << ", " << qz;
+          queries_with_hits += want.empty() ? 0 : 1;
+        }
+    EXPECT_GT(queries_with_hits, 50) << dim << "D";
+  }
+}
+
 TEST(NeighbourGrid, RefusesARadiusBeyondTheLastLevel) {
   NeighbourGrid grid;
   grid.configure(2, {0, 0, 0}, {1, 1, 0}, 0.1);

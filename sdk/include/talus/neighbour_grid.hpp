@@ -8,7 +8,10 @@
 // hold points within its reach and skips the rows that cannot, so it scans
 // about 1.7 times the sphere's volume instead of the 6.4 times of a 3 x 3 x 3
 // stencil of radius-sized cells (3D). Candidates are tested without a branch
-// and the hits handed on in chunks, so the scan never mispredicts.
+// and the hits handed on in chunks, so the scan never mispredicts. Blocks of
+// 4^dim cells remember whether they hold a point, so that a query far from
+// every point (a fluid particle in the middle of a tank, against the tank's
+// wall particles) ends after a few byte reads.
 //
 // Search radii that differ by orders of magnitude (a thinning run-out front,
 // where the smoothing length grows while the bulk keeps the scene's) are
@@ -165,6 +168,11 @@ class NeighbourGrid {
     std::array<int, 3> n{1, 1, 1};
     std::array<double, 3> cell{1, 1, 1}, inv{1, 1, 1};
     std::size_t offset = 0;  // first cell in cell_start_
+    std::array<int, 3> blocks{1, 1, 1};  // blocks of block_cells^dim cells per axis
+    std::size_t block_offset = 0;        // first block in block_filled_
+    std::size_t block_index(int bx, int by, int bz) const {
+      return block_offset + (static_cast<std::size_t>(bz) * blocks[1] + by) * blocks[0] + bx;
+    }
     int axis_cell(double v, double lo, int a) const { return floor_within((v - lo) * inv[a], 0, n[a] - 1); }
     std::size_t cell_index(const Vec3& p, const Vec3& lo, int dim) const {
       const int z = dim == 3 ? axis_cell(p.z, lo.z, 2) : 0;
@@ -188,7 +196,7 @@ class NeighbourGrid {
   void lay_out_levels(int count) {
     level_.resize(count);
     level_max_.assign(count, 0.0);
-    std::size_t total = 0;
+    std::size_t total = 0, block_total = 0;
     for (int k = 0; k < count; ++k) {
       Level& L = level_[k];
       const double cell = 0.5 * radius_ * std::ldexp(1.0, k);
@@ -201,8 +209,41 @@ class NeighbourGrid {
       }
       L.offset = total;
       total += static_cast<std::size_t>(L.n[0]) * L.n[1] * L.n[2];
+      for (int a = 0; a < 3; ++a) L.blocks[a] = (L.n[a] + block_cells - 1) / block_cells;
+      L.block_offset = block_total;
+      block_total += static_cast<std::size_t>(L.blocks[0]) * L.blocks[1] * L.blocks[2];
     }
     cell_start_.assign(total + 1, 0);
+    block_filled_.assign(block_total, 0);
+  }
+
+  // Which blocks of cells hold a point: a query whose reach meets only empty
+  // blocks (a fluid particle far from every wall particle) returns at once.
+  void mark_filled_blocks() {
+    std::fill(block_filled_.begin(), block_filled_.end(), 0);
+    for (const Level& L : level_)
+      for (int cz = 0; cz < L.n[2]; ++cz)
+        for (int cy = 0; cy < L.n[1]; ++cy) {
+          const std::size_t row = L.offset + (static_cast<std::size_t>(cz) * L.n[1] + cy) * L.n[0];
+          for (int cx = 0; cx < L.n[0]; ++cx)
+            if (cell_start_[row + cx + 1] > cell_start_[row + cx])
+              block_filled_[L.block_index(cx / block_cells, cy / block_cells, cz / block_cells)] = 1;
+        }
+  }
+
+  // Whether any block within the cell ranges of a query holds a point (closed axes only).
+  bool any_filled_block(const Level& L, const Vec3& x, double reach) const {
+    int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    for (int a = 0; a < dim_ && a < 3; ++a) {
+      cell_range(L, x[a], reach, a, lo[a], hi[a]);
+      lo[a] /= block_cells;
+      hi[a] /= block_cells;
+    }
+    for (int bz = lo[2]; bz <= hi[2]; ++bz)
+      for (int by = lo[1]; by <= hi[1]; ++by)
+        for (int bx = lo[0]; bx <= hi[0]; ++bx)
+          if (block_filled_[L.block_index(bx, by, bz)]) return true;
+    return false;
   }
 
   // Counting sort of key_ into order_, with the coordinates copied alongside.
@@ -223,9 +264,11 @@ class NeighbourGrid {
       ys_[s] = pos[i].y;
       zs_[s] = dim_ == 3 ? pos[i].z : 0.0;
     }
+    if (!any_periodic_) mark_filled_blocks();
   }
 
   static constexpr int chunk = 64;
+  static constexpr int block_cells = 4;  // cells per block edge (two search radii)
   static constexpr int far_image = 27;  // an image beyond the neighbouring periods
   // Hits of one query: sorted index and which periodic image (shift) it was
   // found in; without periodic axes every shift is zero and is not stored.
@@ -253,6 +296,8 @@ class NeighbourGrid {
   template <bool Periodic, class F>
   TALUS_PAIR_INLINE void query_level(const Level& L, const Vec3& x, double reach, Index first, Hits& hits,
                                      F& f) const {
+    if constexpr (!Periodic)
+      if (!any_filled_block(L, x, reach)) return;
     const double r2max = reach * reach;
     int z0 = 0, z1 = 0, y0, y1;
     if (dim_ == 3) cell_range(L, x.z, reach, 2, z0, z1);
@@ -372,6 +417,7 @@ class NeighbourGrid {
   std::vector<Level> level_;
   std::vector<double> level_max_;  // largest search radius binned per level; 0: empty
   std::vector<Index> cell_start_, cursor_, key_, order_;
+  std::vector<std::uint8_t> block_filled_;  // per block of cells: 1 if it holds a point
   std::vector<double> xs_, ys_, zs_;
 };
 
