@@ -112,15 +112,26 @@ void ParticleStore::reserve(std::size_t n) {
 
 void ParticleStore::reorder(std::span<const Index> order) {
   if (order.size() != size_) throw std::logic_error("ParticleStore::reorder: permutation size mismatch");
+  // In place, cycle by cycle: a bit per particle instead of a copy of the largest column.
+  std::vector<std::uint64_t> done((size_ + 63) / 64);
   for (auto& f : fields_) {
     std::visit(
         [&](auto& column) {
-          using T = typename std::decay_t<decltype(column)>::value_type;
-          scratch_.resize(size_ * sizeof(T));
-          T* tmp = reinterpret_cast<T*>(scratch_.data());
-#pragma omp parallel for schedule(static) if (size_ > 4096)
-          for (std::size_t i = 0; i < size_; ++i) tmp[i] = column[order[i]];
-          std::memcpy(column.data(), tmp, size_ * sizeof(T));
+          std::fill(done.begin(), done.end(), 0);
+          for (std::size_t start = 0; start < size_; ++start) {
+            if (done[start / 64] >> (start % 64) & 1) continue;
+            const auto first = column[start];
+            std::size_t at = start;
+            for (std::size_t from = order[at]; from != start; from = order[at]) {
+              if (from >= size_ || (done[from / 64] >> (from % 64) & 1))
+                throw std::logic_error("ParticleStore::reorder: the order is not a permutation");
+              column[at] = column[from];
+              done[at / 64] |= std::uint64_t{1} << (at % 64);
+              at = from;
+            }
+            column[at] = first;
+            done[at / 64] |= std::uint64_t{1} << (at % 64);
+          }
         },
         f.data);
   }

@@ -16,6 +16,33 @@ TEST(ParticleStore, FieldsAreAllocatedOnlyWhenRequested) {
   EXPECT_THROW(s.scalar("strain_rate"), std::logic_error);
 }
 
+// Reordering works cycle by cycle in place: many cycles of every length, fixed points included,
+// across the 64-particle words of its bookkeeping.
+TEST(ParticleStore, ReorderAppliesAnyPermutationInPlace) {
+  ParticleStore s;
+  s.require({"rho", FieldType::scalar, "kg/m^3", true, true});
+  const std::size_t n = 1000;
+  s.append(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    s.scalar("rho")[i] = static_cast<double>(i);
+    s.position()[i] = {0, static_cast<double>(i), 0};
+    s.material()[i] = static_cast<std::int32_t>(i);
+  }
+  std::vector<Index> order(n);
+  for (std::size_t i = 0; i < 100; ++i) order[i] = static_cast<Index>(i);        // fixed points
+  for (std::size_t i = 100; i < 200; ++i) order[i] = static_cast<Index>(299 - i);  // cycles of two
+  for (std::size_t i = 200; i < n; ++i) order[i] = static_cast<Index>(200 + (i * 7919 + 13) % 800);  // long ones
+  s.reorder(order);
+  for (std::size_t i = 0; i < n; ++i) {
+    EXPECT_EQ(s.ids()[i], order[i]);
+    EXPECT_EQ(s.scalar("rho")[i], static_cast<double>(order[i]));
+    EXPECT_EQ(s.position()[i].y, static_cast<double>(order[i]));
+    EXPECT_EQ(s.material()[i], static_cast<std::int32_t>(order[i]));
+  }
+  std::vector<Index> twice(n, 0);  // not a permutation: refused, never a loop without end
+  EXPECT_THROW(s.reorder(twice), std::logic_error);
+}
+
 TEST(ParticleStore, ReorderAndRemoveKeepEveryFieldAndId) {
   ParticleStore s;
   s.require({"rho", FieldType::scalar, "kg/m^3", true, true});

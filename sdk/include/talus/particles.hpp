@@ -86,7 +86,6 @@ class TALUS_API ParticleStore {
   std::vector<Field> fields_;
   std::size_t size_ = 0;
   std::uint64_t next_id_ = 0;
-  std::vector<std::uint8_t> scratch_;  // reused by reorder, no allocation per call
 };
 
 }  // namespace talus
