@@ -13,7 +13,6 @@
 
 #include "phase_times.hpp"
 #include "scene.hpp"
-#include "talus/neighbour_grid.hpp"
 #include "talus/world.hpp"
 
 namespace talus {
@@ -96,7 +95,6 @@ class TALUS_API Simulation {
   std::vector<std::uint8_t> escaped_;  // scratch, reused
   std::vector<std::uint8_t> removal_warned_;  // per body: its first removal was reported
   std::size_t warnings_printed_ = 0;
-  NeighbourGrid resort_cells_;         // reused by every re-sort: no allocation once sized
 };
 
 }  // namespace talus

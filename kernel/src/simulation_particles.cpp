@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 
+#include "cell_order.hpp"
 #include "talus/number_text.hpp"
 #include "talus/error.hpp"
 
@@ -53,9 +54,7 @@ void Simulation::resort_particles() {
   if (world_.fluid.size() == 0) return;
   const double cell = world_.h > 0 ? world_.kernel.support_radius() : 2.0 * world_.dp;
   if (!(cell > 0)) return;
-  resort_cells_.configure(world_.dim, world_.lo, world_.hi, cell, {});
-  resort_cells_.build(world_.fluid.position());
-  world_.fluid.reorder(resort_cells_.order());
+  world_.fluid.reorder(cell_order(world_.fluid.position(), world_.lo, world_.hi, cell, world_.dim));
   world_.refresh_material_index();
 }
 
