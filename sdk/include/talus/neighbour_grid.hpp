@@ -256,14 +256,17 @@ class NeighbourGrid {
     std::fill(cell_start_.begin(), cell_start_.end(), 0);
     for (std::size_t i = 0; i < n; ++i) ++cell_start_[key_[i] + 1];
     for (std::size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
-    cursor_.assign(cell_start_.begin(), cell_start_.end() - 1);
+    // Each cell's start is its cursor while filling: it ends as the next cell's start, and the
+    // starts are shifted back by one afterwards (no second array of cells).
     for (std::size_t i = 0; i < n; ++i) {
-      const Index s = cursor_[key_[i]]++;
+      const Index s = cell_start_[key_[i]]++;
       order_[s] = static_cast<Index>(i);
       xs_[s] = pos[i].x;
       ys_[s] = pos[i].y;
       zs_[s] = dim_ == 3 ? pos[i].z : 0.0;
     }
+    std::copy_backward(cell_start_.begin(), cell_start_.end() - 2, cell_start_.end() - 1);
+    cell_start_[0] = 0;
     if (!any_periodic_) mark_filled_blocks();
   }
 
@@ -416,7 +419,7 @@ class NeighbourGrid {
   bool any_periodic_ = false;
   std::vector<Level> level_;
   std::vector<double> level_max_;  // largest search radius binned per level; 0: empty
-  std::vector<Index> cell_start_, cursor_, key_, order_;
+  std::vector<Index> cell_start_, key_, order_;
   std::vector<std::uint8_t> block_filled_;  // per block of cells: 1 if it holds a point
   std::vector<double> xs_, ys_, zs_;
 };
