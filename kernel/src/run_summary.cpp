@@ -40,6 +40,7 @@ void write_summary_file(const RunSummary& r, const std::string& path) {
                             {"wall_particles", world.boundary.size()},
                             {"blocks", world.blocks ? world.blocks->size() : 0},
                             {"particle_steps", r.particle_steps},
+                            {"wall_particle_steps", r.wall_particle_steps},
                             {"peak_memory_mib", r.peak_memory_mib},
                             {"removed", world.removed},
                             {"wall_crossings", world.wall_crossings},
@@ -96,6 +97,9 @@ void print_summary(const RunSummary& r) {
               "peak memory %.0f MiB\n",
               static_cast<unsigned long long>(steps), fixed(world.time, 6).c_str(), clock_text(wall).c_str(),
               wall > 0 ? steps / wall : 0.0, wall > 0 ? r.particle_steps / wall / 1e6 : 0.0, r.peak_memory_mib);
+  if (r.wall_particle_steps > 0 && wall > 0)
+    std::printf("       %.3g M particle-steps/s counting the wall particles too (as bench_wcsph and DualSPHysics do)\n",
+                static_cast<double>(r.particle_steps + r.wall_particle_steps) / wall / 1e6);
   for (const auto& warning : world.warnings.all()) std::printf("       warning: %s\n", warning.c_str());
   if (world.wall_crossings)
     std::printf("       %llu fluid particles passed into a wall (the warnings say where and when the first did)\n",

@@ -24,7 +24,8 @@ struct RunSummary {
   const std::vector<ScheduledWriter>& writers;
   const std::vector<std::string>& finish_lines;  // the stages' finish() lines
   std::uint64_t steps;                           // taken by this process (a restart counts from its checkpoint)
-  std::uint64_t particle_steps;
+  std::uint64_t particle_steps;       // fluid particles, summed over the steps
+  std::uint64_t wall_particle_steps;  // wall particles, the same (bench_wcsph and DualSPHysics count both)
   double wall_seconds;  // from the first step's set-up on (the scene's own set-up is in phases.setup)
   double peak_memory_mib;
   const PhaseTimes& phases;

@@ -105,7 +105,7 @@ int Simulation::run(const RunOptions& options) {
 
   Progress progress(options.quiet, options.progress_seconds);
   const std::uint64_t first_step = world_.step;
-  std::uint64_t particle_steps = 0;
+  std::uint64_t particle_steps = 0, wall_particle_steps = 0;
   double wall_at_last_checkpoint = 0.0;
   phases_.stages.assign(stages_.size(), 0.0);
   phases_.setup += since_start_.lap();
@@ -136,6 +136,7 @@ int Simulation::run(const RunOptions& options) {
       world_.time += dt;
       ++world_.step;
       particle_steps += world_.fluid.size();
+      wall_particle_steps += world_.boundary.size();
       remove_escaped_particles();
       if (world_.step % resort_every_ == 0) resort_particles();
       check_finite();
@@ -196,7 +197,8 @@ int Simulation::run(const RunOptions& options) {
 
   const double wall = progress.elapsed();
   const RunSummary summary{scene_.path, world_, stages_, stage_names_, writers_, finish_lines,
-                           world_.step - first_step, particle_steps, wall, peak_memory_mib(), phases_};
+                           world_.step - first_step, particle_steps, wall_particle_steps, wall, peak_memory_mib(),
+                           phases_};
   if (!options.summary_file.empty()) write_summary_file(summary, options.summary_file);
   if (!options.quiet) print_summary(summary);
   return 0;

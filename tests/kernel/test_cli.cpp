@@ -271,6 +271,22 @@ TEST(Cli, SummaryGivesTheTimeOfEachPhase) {
   EXPECT_GE(total, 0.99 * summary["wall_seconds"].get<double>()) << summary.dump();
 }
 
+// Particle-steps per second are quoted for the fluid; with the wall particles counted too (as
+// bench_wcsph and DualSPHysics count them) on a line of their own, and both totals in the summary.
+TEST(Cli, SummaryCountsFluidAndWallParticleSteps) {
+  const std::string dir = fresh_dir("wall_steps");
+  const auto r = run_command(exe + " run " + scenes + "/tank_tiny_2d.json --out " + dir + " --summary " + dir + ".json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("M particle-steps/s counting the wall particles too"), std::string::npos) << r.output;
+  const auto summary = nlohmann::json::parse(read_file(dir + ".json"));
+  const auto steps = summary["steps"].get<std::uint64_t>();
+  ASSERT_GT(steps, 0u);
+  ASSERT_GT(summary["wall_particles"].get<std::uint64_t>(), 0u);
+  EXPECT_EQ(summary["particle_steps"].get<std::uint64_t>(), steps * summary["fluid_particles"].get<std::uint64_t>());
+  EXPECT_EQ(summary["wall_particle_steps"].get<std::uint64_t>(),
+            steps * summary["wall_particles"].get<std::uint64_t>());
+}
+
 TEST(Cli, UnwritableOutputFolderIsARunError) {
   const auto r = run_command(exe + " run " + scenes + "/ballistic.json --quiet --out /proc/version/out");
   EXPECT_EQ(r.exit_code, 1) << r.output;
