@@ -13,6 +13,6 @@
 namespace talus {
 
 // Cells of edge about `cell` over [lo, hi]; points beyond it go to the edge cells.
-std::vector<Index> cell_order(std::span<const Vec3> x, const Vec3& lo, const Vec3& hi, double cell, int dim);
+TALUS_API std::vector<Index> cell_order(std::span<const Vec3> x, const Vec3& lo, const Vec3& hi, double cell, int dim);
 
 }  // namespace talus

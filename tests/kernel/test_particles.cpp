@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "cell_order.hpp"
 #include "talus/particles.hpp"
 
 namespace talus {
@@ -14,6 +15,17 @@ TEST(ParticleStore, FieldsAreAllocatedOnlyWhenRequested) {
   EXPECT_EQ(s.scalar("mu_eff").size(), 3u);
   EXPECT_THROW(s.require({"mu_eff", FieldType::vector, "", true, false}), std::logic_error);
   EXPECT_THROW(s.scalar("strain_rate"), std::logic_error);
+}
+
+// The re-sort's order: by cell (z, then y, then x), stable within a cell, points outside the box in
+// its edge cells, and a box far larger than the points costs a bounded grid, not one cell per spacing.
+TEST(CellOrder, SortsByCellAndBoundsTheGrid) {
+  const std::vector<Vec3> x{{0.5, 0.5, 1.5}, {1.5, 0.5, 0.5}, {0.5, 0.5, 0.5}, {-7, 0.2, 0.1}, {0.6, 0.4, 0.3}};
+  const std::vector<Index> order = cell_order(x, {0, 0, 0}, {2, 2, 2}, 1.0, 3);
+  EXPECT_EQ(order, (std::vector<Index>{2, 3, 4, 1, 0}));
+  const std::vector<Vec3> far{{0, 0, 0}, {1e7, 1e7, 1e7}, {5e6, 0, 0}};
+  const std::vector<Index> sparse = cell_order(far, {0, 0, 0}, {1e7, 1e7, 1e7}, 0.01, 3);  // 1e27 cells asked
+  EXPECT_EQ(sparse, (std::vector<Index>{0, 2, 1}));
 }
 
 // Reordering works cycle by cycle in place: many cycles of every length, fixed points included,
