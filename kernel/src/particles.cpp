@@ -1,7 +1,6 @@
 #include "talus/particles.hpp"
 
 #include <algorithm>
-#include <cstring>
 #include <stdexcept>
 #include <utility>
 
