@@ -22,6 +22,7 @@ const char* to_string(ParamType type) {
     case ParamType::vector_list: return "list of points";
     case ParamType::string_list: return "list of strings";
     case ParamType::index_lists: return "list of index lists";
+    case ParamType::json_list: return "list of JSON values";
     case ParamType::object: return "object";
     case ParamType::object_list: return "list of objects";
     case ParamType::object_map: return "object of named entries";
@@ -123,6 +124,7 @@ ParamBuilder ParamSet::string_list(std::string name, std::vector<std::string> ch
   return b;
 }
 ParamBuilder ParamSet::index_lists(std::string name) { return add(std::move(name), ParamType::index_lists); }
+ParamBuilder ParamSet::json_list(std::string name) { return add(std::move(name), ParamType::json_list); }
 ParamBuilder ParamSet::object(std::string name, ParamSet nested) {
   auto b = add(std::move(name), ParamType::object);
   specs_.back().nested = std::make_shared<const ParamSet>(std::move(nested));
@@ -239,6 +241,11 @@ const std::vector<std::vector<int>>& ParamValues::index_lists(std::string_view n
   const auto& v = at(name);
   if (v.type != ParamType::index_lists) misuse(*this, name, "is not a list of index lists");
   return v.indices;
+}
+const std::vector<std::string>& ParamValues::json_texts(std::string_view name) const {
+  const auto& v = at(name);
+  if (v.type != ParamType::json_list) misuse(*this, name, "is not a list of JSON values");
+  return v.strings;
 }
 const ParamValues& ParamValues::object(std::string_view name) const {
   const auto& v = at(name);

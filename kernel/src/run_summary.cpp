@@ -30,6 +30,14 @@ double peak_memory_mib() {
   return usage.ru_maxrss / 1024.0;
 }
 
+const std::vector<std::string>& summary_keys() {
+  static const std::vector<std::string> keys = {
+      "scene",     "steps",     "time",    "wall_seconds", "fluid_particles", "wall_particles",
+      "blocks",    "particle_steps", "wall_particle_steps", "peak_memory_mib", "removed", "wall_crossings",
+      "warnings",  "threads",   "finish",  "phases_s",     "stages",          "outputs"};
+  return keys;
+}
+
 void write_summary_file(const RunSummary& r, const std::string& path) {
   const World& world = r.world;
   nlohmann::json summary = {{"scene", r.scene_path},
@@ -58,7 +66,11 @@ void write_summary_file(const RunSummary& r, const std::string& path) {
   for (std::size_t i = 0; i < r.stages.size(); ++i) statuses[r.stage_names[i]] = r.stages[i]->status(world);
   summary["stages"] = statuses;
   nlohmann::json files = nlohmann::json::object();
-  for (const auto& w : r.writers) files[w.type] = w.writer->files();
+  for (const auto& w : r.writers) {  // two writers of one type: both lists, in scene order
+    nlohmann::json& list = files[w.type];
+    if (list.is_null()) list = nlohmann::json::array();
+    for (const auto& file : w.writer->files()) list.push_back(file);
+  }
   summary["outputs"] = files;
   const std::string tmp = path + ".tmp";
   {

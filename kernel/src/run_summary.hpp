@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "phase_times.hpp"
+#include "talus/config.hpp"
 
 namespace talus {
 
@@ -33,6 +34,9 @@ struct RunSummary {
 
 // The peak resident memory of this process so far, MiB.
 double peak_memory_mib();
+
+// The summary file's top-level keys (what `talus study` measures may name).
+TALUS_API const std::vector<std::string>& summary_keys();
 
 // Writes `path` through a temporary file, renamed when complete; throws RunError.
 void write_summary_file(const RunSummary& summary, const std::string& path);

@@ -53,16 +53,22 @@ std::string error_summary(std::size_t count, const std::string& file) {
 }
 
 Scene load_scene(const std::string& path, PluginRegistry& registry) {
-  Scene scene;
-  scene.path = path;
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("error: " + path + ": cannot open scene file: " + std::strerror(errno));
   std::stringstream buffer;
   buffer << in.rdbuf();
-  scene.text = buffer.str();
-  scene.name = fs::path(path).stem().string();
-  scene.base_dir = fs::path(path).parent_path().string();
-  if (scene.base_dir.empty()) scene.base_dir = ".";
+  std::string base_dir = fs::path(path).parent_path().string();
+  if (base_dir.empty()) base_dir = ".";
+  return parse_scene(buffer.str(), path, fs::path(path).stem().string(), base_dir, registry);
+}
+
+Scene parse_scene(std::string text, const std::string& path, const std::string& name, const std::string& base_dir,
+                  PluginRegistry& registry, std::vector<std::string>* path_pointers) {
+  Scene scene;
+  scene.path = path;
+  scene.text = std::move(text);
+  scene.name = name;
+  scene.base_dir = base_dir;
 
   const nlohmann::json json = parse_json(scene.text, path);  // phase 1: syntax
   Diagnostics diagnostics;
@@ -72,6 +78,7 @@ Scene load_scene(const std::string& path, PluginRegistry& registry) {
     for (std::size_t k = 0; k < json["plugins"].size(); ++k) {
       const auto& item = json["plugins"][k];
       if (!item.is_string()) continue;  // reported by the structural phase
+      if (path_pointers) path_pointers->push_back("/plugins/" + std::to_string(k));
       fs::path p = item.get<std::string>();
       if (p.is_relative()) p = fs::path(scene.base_dir) / p;
       try {
@@ -91,7 +98,7 @@ Scene load_scene(const std::string& path, PluginRegistry& registry) {
     if (d.contains("dim") && d["dim"].is_number_integer() && (d["dim"] == 2 || d["dim"] == 3)) dim = d["dim"].get<int>();
   }
 
-  ValidationContext context{path, scene.base_dir, dim, &registry, &diagnostics};
+  ValidationContext context{path, scene.base_dir, dim, &registry, &diagnostics, path_pointers};
   scene.values = validate(scene_params(), json, "", context);  // phase 2: structure (+ per-set checks)
   if (diagnostics.empty()) check_references(scene.values, diagnostics);  // phase 3
   if (!diagnostics.empty())

@@ -93,6 +93,7 @@ json spec_schema(const ParamSpec& s, PluginRegistry& registry) {
       j = {{"type", "array"},
            {"items", {{"type", "array"}, {"minItems", 3}, {"items", {{"type", "integer"}, {"minimum", 0}}}}}};
       break;
+    case ParamType::json_list: j = {{"type", "array"}}; break;
     case ParamType::object: j = object_schema(*s.nested, registry); break;
     case ParamType::object_list: j = {{"type", "array"}, {"items", object_schema(*s.nested, registry)}}; break;
     case ParamType::object_map:

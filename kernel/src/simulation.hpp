@@ -56,6 +56,8 @@ class TALUS_API Simulation {
   World& world() { return world_; }
   // Every file the writers have written so far.
   std::vector<std::string> output_files() const;
+  // Every time-series column the writers will record (Writer::series).
+  std::vector<std::string> output_series() const;
   const Scene& scene() const { return scene_; }
 
   // Checkpoints (also used by tests): write the complete state; read it back

@@ -24,6 +24,13 @@ std::vector<std::string> Simulation::output_files() const {
   return files;
 }
 
+std::vector<std::string> Simulation::output_series() const {
+  std::vector<std::string> columns;
+  for (const auto& w : writers_)
+    for (auto& c : w.writer->series(world_)) columns.push_back(c);
+  return columns;
+}
+
 // On stderr, so that --quiet and a redirected log keep them.
 void Simulation::print_new_warnings() {
   const auto& all = world_.warnings.all();

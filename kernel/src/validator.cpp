@@ -137,6 +137,7 @@ class Validator {
       case ParamType::vector_list:
       case ParamType::string_list:
       case ParamType::index_lists:
+      case ParamType::json_list:
       case ParamType::object_list:
       case ParamType::object_map:
         return !s.required;  // an optional list is an empty list
@@ -251,6 +252,7 @@ class Validator {
           return false;
         }
         std::filesystem::path path = j.get<std::string>();
+        if (c_.path_pointers) c_.path_pointers->push_back(p);
         if (path.is_relative()) path = std::filesystem::path(c_.base_dir) / path;
         v.text = path.lexically_normal().string();
         // The error_code form: a name too long for the system throws otherwise.
@@ -309,6 +311,13 @@ class Validator {
         }
         return ok;
       }
+      case ParamType::json_list:
+        if (!j.is_array()) {
+          error(p, "expected an array, got " + describe(j));
+          return false;
+        }
+        for (const auto& item : j) v.strings.push_back(item.dump());
+        return true;
       case ParamType::index_lists: {
         bool ok = j.is_array();
         for (std::size_t k = 0; ok && k < j.size(); ++k) {

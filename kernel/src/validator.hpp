@@ -33,6 +33,7 @@ struct ValidationContext {
   int dim = 3;           // size of vector parameters
   ModelCatalogue* models = nullptr;
   Diagnostics* diagnostics = nullptr;
+  std::vector<std::string>* path_pointers = nullptr;  // if set: the pointer of every path value is added
 };
 
 TALUS_API ParamValues validate(const ParamSet& set, const nlohmann::json& json, const std::string& pointer,

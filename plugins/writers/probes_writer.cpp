@@ -338,6 +338,12 @@ void ProbesWriter::choose_vertical(const World& world) {
 
 void ProbesWriter::check(const World& world) const { ProbesWriter(params_).prepare(world); }
 
+std::vector<std::string> ProbesWriter::series(const World& world) const {
+  ProbesWriter prepared(params_);
+  prepared.prepare(world);
+  return prepared.names_;
+}
+
 void ProbesWriter::open(const OutputContext& context, const World& world) {
   check_writable_directory(context.directory);
   prepare(world);

@@ -44,8 +44,9 @@ class ProbesWriter final : public Writer {
   void write(const World& world) override;
   void close(const World& world) override;
   std::vector<std::string> files() const override;
+  std::vector<std::string> series(const World& world) const override;
 
-  // The header row (column names), for tests and tools.
+  // The header row (column names) once open() ran, for tests and tools.
   const std::vector<std::string>& columns() const { return names_; }
 
  private:

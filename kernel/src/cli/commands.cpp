@@ -13,6 +13,8 @@
 #include "scene_schema.hpp"
 #include "schema.hpp"
 #include "simulation.hpp"
+#include "study/study_run.hpp"
+#include "study/study_spec.hpp"
 #include "talus/error.hpp"
 #include "talus/memory.hpp"
 #include "text.hpp"
@@ -29,9 +31,20 @@ constexpr const char* default_scene_file = "scenes/block_impact.json";
 struct Options {
   std::vector<std::string> positional;
   std::string out, restart, output_file, summary;
-  int threads = 0;
-  bool quiet = false, verbose = false, allow_large = false;
+  int threads = 0, jobs = 1;
+  bool quiet = false, verbose = false, allow_large = false, retry_failed = false, dry_run = false;
 };
+
+int positive_integer(const std::string& option, const std::string& v) {
+  std::size_t used = 0;
+  int n = -1;
+  try {
+    n = std::stoi(v, &used);
+  } catch (const std::exception&) {
+  }
+  if (n < 1 || used != v.size()) throw InputError("error: " + option + ": '" + v + "' is not a positive integer");
+  return n;
+}
 
 Options parse(const Args& args, const std::vector<std::string>& allowed) {
   Options o;
@@ -57,15 +70,10 @@ Options parse(const Args& args, const std::vector<std::string>& allowed) {
     else if (a == "--quiet") o.quiet = true;
     else if (a == "--verbose") o.verbose = true;
     else if (a == "--allow-large") o.allow_large = true;
-    else if (a == "--threads") {
-      const std::string v = value();
-      try {
-        o.threads = std::stoi(v);
-      } catch (const std::exception&) {
-        o.threads = -1;
-      }
-      if (o.threads < 1) throw InputError("error: --threads: '" + v + "' is not a positive integer");
-    }
+    else if (a == "--retry-failed") o.retry_failed = true;
+    else if (a == "--dry-run") o.dry_run = true;
+    else if (a == "--threads") o.threads = positive_integer(a, value());
+    else if (a == "--jobs") o.jobs = positive_integer(a, value());
   }
   return o;
 }
@@ -210,8 +218,12 @@ std::string usage() {
          "  plan SCENE [--allow-large]\n"
          "                       the resolved pipeline: stages, passes, fields, plugins loaded, and the\n"
          "                       estimate of particles, memory and steps\n"
+         "  study STUDY [--out DIR] [--jobs N] [--threads N] [--retry-failed] [--dry-run] [--quiet]\n"
+         "                       a parameter study: every variant checked first, then run (N side by side,\n"
+         "                       threads split between them) into DIR/ID/, resumable; table DIR/table.csv\n"
+         "                       (`talus doc study`: the study file's keys)\n"
          "  plugins              list the plugins found: kind, name, version, library\n"
-         "  doc NAME             parameter table of a model (NAME or KIND/NAME, or 'scene')\n"
+         "  doc NAME             parameter table of a model (NAME or KIND/NAME, 'scene' or 'study')\n"
          "  example NAME         a JSON snippet using a model with its defaults\n"
          "  schema [--output F]  JSON Schema of scene files, generated from the declarations\n"
          "  manifest LIBRARY     write LIBRARY.talus.json, the index entry of a plugin\n"
@@ -278,6 +290,21 @@ int plan(const Args& args) {
   return 0;
 }
 
+int study(const Args& args) {
+  const Options o = parse(args, {"--out", "--jobs", "--threads", "--retry-failed", "--allow-large", "--dry-run",
+                                 "--quiet"});
+  if (o.positional.size() != 1) throw InputError("error: talus study needs exactly one study file\n" + usage());
+  study::StudyOptions options;
+  options.out = o.out;
+  options.jobs = o.jobs;
+  options.threads = o.threads;
+  options.retry_failed = o.retry_failed;
+  options.allow_large = o.allow_large;
+  options.dry_run = o.dry_run;
+  options.quiet = o.quiet;
+  return study::run_study(study::load_study(o.positional.front()), options);
+}
+
 int plugins(const Args& args) {
   parse(args, {});
   PluginRegistry registry;
@@ -310,6 +337,19 @@ int doc(const Args& args) {
   if (o.positional.size() != 1) throw InputError("error: talus doc needs one model name\n" + usage());
   if (o.positional.front() == "scene") {
     std::fputs(doc_text(scene_params(), "scene file").c_str(), stdout);
+    return 0;
+  }
+  if (o.positional.front() == "study") {  // small enough to show with its sections
+    const ParamSet study_file = study::study_params();
+    std::fputs(doc_text(study_file, "study file").c_str(), stdout);
+    std::vector<const ParamSet*> sections{&study_file};
+    for (std::size_t k = 0; k < sections.size(); ++k)
+      for (const auto& spec : sections[k]->specs())
+        if (spec.nested) {
+          std::printf("\n%s:\n", spec.name.c_str());
+          std::fputs(doc_text(*spec.nested, "study file").c_str(), stdout);
+          sections.push_back(spec.nested.get());
+        }
     return 0;
   }
   PluginRegistry registry;

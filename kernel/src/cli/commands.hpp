@@ -12,6 +12,7 @@ using Args = std::vector<std::string>;
 int run(const Args& args);
 int validate(const Args& args);
 int plan(const Args& args);
+int study(const Args& args);
 int plugins(const Args& args);
 int doc(const Args& args);
 int example(const Args& args);

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
     if (command == "run") return cli::run(args);
     if (command == "validate") return cli::validate(args);
     if (command == "plan") return cli::plan(args);
+    if (command == "study") return cli::study(args);
     if (command == "plugins") return cli::plugins(args);
     if (command == "doc") return cli::doc(args);
     if (command == "example") return cli::example(args);

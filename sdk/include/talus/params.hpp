@@ -33,6 +33,7 @@ enum class ParamType {
   vector_list,  // a list of points
   string_list,  // a list of strings (optionally restricted to choices)
   index_lists,  // a list of lists of non-negative integers (polyhedron faces)
+  json_list,    // a list of any JSON values, each kept as its compact text (a study's axis values)
   object,       // a nested object with its own ParamSet
   object_list,  // an array of such objects
   object_map,   // an object whose keys are user-chosen names
@@ -131,6 +132,7 @@ class TALUS_API ParamSet {
   ParamBuilder vector_list(std::string name);
   ParamBuilder string_list(std::string name, std::vector<std::string> choices = {});
   ParamBuilder index_lists(std::string name);
+  ParamBuilder json_list(std::string name);
   ParamBuilder object(std::string name, ParamSet nested);
   ParamBuilder object_list(std::string name, ParamSet nested);
   ParamBuilder object_map(std::string name, ParamSet nested);
@@ -172,7 +174,7 @@ struct TALUS_API ParamValue {
   bool boolean = false;
   std::string text;                  // string, choice, path (resolved), model name, one_of alternative
   std::vector<double> reals;         // vector (always 3 long, z = 0 in 2D), real_list, vector_list (3 per point)
-  std::vector<std::string> strings;  // string_list, object_map keys, model_list names
+  std::vector<std::string> strings;  // string_list, json_list (compact JSON texts), object_map keys, model_list names
   std::vector<std::vector<int>> indices;  // index_lists
   std::vector<ParamValues> objects;  // object, object_list, object_map, model parameters, one_of
 };
@@ -194,6 +196,7 @@ class TALUS_API ParamValues {
   std::vector<Vec3> vectors(std::string_view name) const;
   const std::vector<std::string>& strings(std::string_view name) const;
   const std::vector<std::vector<int>>& index_lists(std::string_view name) const;
+  const std::vector<std::string>& json_texts(std::string_view name) const;  // json_list
   const ParamValues& object(std::string_view name) const;
   const std::vector<ParamValues>& objects(std::string_view name) const;
   // object_map: names in declaration order of the file, values alongside.

@@ -38,6 +38,10 @@ class TALUS_API Writer : public Model {
   virtual void close(const World& /*world*/) {}
   // Files written so far, for the run summary.
   virtual std::vector<std::string> files() const = 0;
+  // The columns of the time series this writer records for this world (a CSV
+  // header), known once check() passes: `talus study` refuses a measure that
+  // names none of them before anything runs. Writers of fields return none.
+  virtual std::vector<std::string> series(const World& /*world*/) const { return {}; }
 };
 
 }  // namespace talus
