@@ -6,6 +6,7 @@
 #include <sys/resource.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -34,7 +35,7 @@ const std::vector<std::string>& summary_keys() {
   static const std::vector<std::string> keys = {
       "scene",     "steps",     "time",    "wall_seconds", "fluid_particles", "wall_particles",
       "blocks",    "particle_steps", "wall_particle_steps", "peak_memory_mib", "removed", "wall_crossings",
-      "warnings",  "threads",   "finish",  "phases_s",     "stages",          "outputs"};
+      "warnings",  "threads",   "finish",  "phases_s",     "stages",          "outputs", "results"};
   return keys;
 }
 
@@ -72,6 +73,14 @@ void write_summary_file(const RunSummary& r, const std::string& path) {
     for (const auto& file : w.writer->files()) list.push_back(file);
   }
   summary["outputs"] = files;
+  nlohmann::json results = nlohmann::json::object();
+  for (const auto& w : r.writers)
+    for (const auto& result : w.writer->results()) {
+      nlohmann::json& value = results[w.type][result.name];
+      if (!result.text.empty()) value = result.text;
+      else if (std::isfinite(result.number)) value = result.number;  // JSON has no NaN: an absent result is null
+    }
+  summary["results"] = results;
   const std::string tmp = path + ".tmp";
   {
     std::ofstream out(tmp);

@@ -58,6 +58,8 @@ class TALUS_API Simulation {
   std::vector<std::string> output_files() const;
   // Every time-series column the writers will record (Writer::series).
   std::vector<std::string> output_series() const;
+  // Every result the writers will give at the end, as TYPE/NAME (Writer::result_names).
+  std::vector<std::string> output_results() const;
   const Scene& scene() const { return scene_; }
 
   // Checkpoints (also used by tests): write the complete state; read it back

@@ -24,6 +24,13 @@ std::vector<std::string> Simulation::output_files() const {
   return files;
 }
 
+std::vector<std::string> Simulation::output_results() const {
+  std::vector<std::string> names;
+  for (const auto& w : writers_)
+    for (auto& name : w.writer->result_names()) names.push_back(w.type + "/" + name);
+  return names;
+}
+
 std::vector<std::string> Simulation::output_series() const {
   std::vector<std::string> columns;
   for (const auto& w : writers_)

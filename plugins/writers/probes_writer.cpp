@@ -91,6 +91,11 @@ ParamSet ProbesWriter::describe() {
       .optional()
       .doc("extent of a wall sensor's patch along the wall (2D: length; 3D: diameter); default the wall's particle "
            "spacing (one row of wall particles)");
+  p.object("waves", BreakerAnalysis::describe())
+      .optional()
+      .doc("at the end of the run, the waves the gauges recorded: heights and period (zero up-crossing), "
+           "Iribarren and Froude numbers, breaker type; in the run summary (results/probes) and FILE_waves.json beside "
+           "the probes file");
   p.boolean("block_forces")
       .default_value(false)
       .doc("external force on every block (the coupling force of the last step): NAME_fx, NAME_fy[, NAME_fz]");
@@ -151,6 +156,11 @@ ProbesWriter::ProbesWriter(const ParamValues& params) : params_(params) {
   gauge_threshold_ = params.real("gauge_threshold");
   if (params.has("gauge_step")) gauge_step_ = params.real("gauge_step");
   block_forces_ = params.boolean("block_forces");
+  if (params.has("waves")) {
+    std::vector<std::string> gauge_names;
+    for (const auto& g : gauges_) gauge_names.push_back(g.name);
+    waves_.emplace(params.object("waves"), gauge_names);
+  }
   const std::vector<std::string> defaults{"mass", "kinetic_energy", "particles"};
   for (const auto& name : given_strings(params, "integrals") ? params.strings("integrals") : defaults) {
     const auto* it = std::find(std::begin(kIntegralNames), std::end(kIntegralNames), name);
@@ -349,6 +359,7 @@ void ProbesWriter::open(const OutputContext& context, const World& world) {
   prepare(world);
   path_ =
       join_path(context.directory, params_.has("file") ? params_.string("file") : context.scene_name + "_probes.csv");
+  waves_path_ = (path_.ends_with(".csv") ? path_.substr(0, path_.size() - 4) : path_) + "_waves.json";
   const std::string header = join(names_, ",");
   std::uint64_t last_kept_step = 0;
   bool kept_rows = false;
@@ -633,10 +644,31 @@ void ProbesWriter::write(const World& world) {
   last_step_ = world.step;
 }
 
-void ProbesWriter::close(const World& /*world*/) { file_.close(); }
+void ProbesWriter::close(const World& world) {
+  file_.close();
+  if (!waves_ || path_.empty()) return;
+  results_ = waves_->analyse(path_, norm(world.gravity));
+  std::string json = "{\n";
+  for (std::size_t k = 0; k < results_.size(); ++k) {
+    const WriterResult& r = results_[k];
+    const std::string value = !r.text.empty()            ? "\"" + r.text + "\""
+                              : std::isfinite(r.number) ? format_real(r.number)
+                                                        : "null";
+    json += "  \"" + r.name + "\": " + value + (k + 1 < results_.size() ? ",\n" : "\n");
+  }
+  json += "}\n";
+  const std::string tmp = waves_path_ + ".tmp";
+  write_whole_file(tmp, json);
+  publish(tmp, waves_path_, false);
+}
+
+std::vector<std::string> ProbesWriter::result_names() const {
+  return waves_ ? waves_->result_names() : std::vector<std::string>{};
+}
 
 std::vector<std::string> ProbesWriter::files() const {
   if (path_.empty()) return {};
+  if (!results_.empty()) return {path_, waves_path_};
   return {path_};
 }
 

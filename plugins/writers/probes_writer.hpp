@@ -22,10 +22,12 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "breaker_analysis.hpp"
 #include "file_io.hpp"
 #include "sph_sampler.hpp"
 #include "talus/params.hpp"
@@ -45,6 +47,8 @@ class ProbesWriter final : public Writer {
   void close(const World& world) override;
   std::vector<std::string> files() const override;
   std::vector<std::string> series(const World& world) const override;
+  std::vector<std::string> result_names() const override;
+  std::vector<WriterResult> results() const override { return results_; }
 
   // The header row (column names) once open() ran, for tests and tools.
   const std::vector<std::string>& columns() const { return names_; }
@@ -112,7 +116,9 @@ class ProbesWriter final : public Writer {
   std::vector<PointColumn> point_columns_;
   std::vector<std::string> names_, units_;
   std::size_t block_count_ = 0;
-  std::string path_;
+  std::optional<BreakerAnalysis> waves_;
+  std::vector<WriterResult> results_;
+  std::string path_, waves_path_;
   LineFile file_;
   SphSampler sampler_;
   std::vector<double> volume_;

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "talus/error.hpp"
+#include "talus/series_file.hpp"
 
 namespace fs = std::filesystem;
 
@@ -17,25 +18,8 @@ namespace talus::study {
 
 namespace {
 
-std::vector<std::string> split_row(const std::string& line) {
-  std::vector<std::string> cells;
-  std::stringstream in(line);
-  std::string cell;
-  while (std::getline(in, cell, ',')) cells.push_back(cell);
-  return cells;
-}
-
-// The header of a series file ('#' comment lines, then the header row).
-std::vector<std::string> header_of(std::ifstream& in) {
-  std::string line;
-  while (std::getline(in, line))
-    if (!line.empty() && line[0] != '#') return split_row(line);
-  return {};
-}
-
 bool has_column(const std::string& csv_path, const std::string& column) {
-  std::ifstream in(csv_path);
-  const auto header = header_of(in);
+  const auto header = series_header(csv_path);
   return std::find(header.begin(), header.end(), column) != header.end();
 }
 
@@ -59,24 +43,12 @@ void write_atomically(const std::string& path, const std::string& text) {
 }  // namespace
 
 double reduce_series(const std::string& csv_path, const Measure& m) {
-  std::ifstream in(csv_path);
-  if (!in) throw RunError(csv_path + ": cannot open: " + std::strerror(errno));
-  const auto header = header_of(in);
-  const auto column = std::find(header.begin(), header.end(), m.series);
-  const auto time = std::find(header.begin(), header.end(), "time");
-  if (column == header.end() || time == header.end())
-    throw RunError(csv_path + ": no column '" + m.series + "' (or no time column)");
-  const std::size_t c = column - header.begin(), t = time - header.begin();
+  const auto series = read_series(csv_path, {"time", m.series});
   double lo = std::numeric_limits<double>::infinity(), hi = -lo, sum = 0.0, first = 0.0, last = 0.0, max_abs = 0.0;
   std::size_t rows = 0;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    const auto cells = split_row(line);
-    if (cells.size() <= std::max(c, t)) continue;
-    const double at = std::strtod(cells[t].c_str(), nullptr);
+  for (std::size_t k = 0; k < series[0].size(); ++k) {
+    const double at = series[0][k], x = series[1][k];
     if (at < m.from || (m.bounded && at > m.to)) continue;
-    const double x = std::strtod(cells[c].c_str(), nullptr);
     if (!std::isfinite(x)) continue;  // a gauge with no water above it writes nan
     if (rows == 0) first = x;
     last = x;

@@ -16,16 +16,27 @@ namespace talus::study {
 
 namespace {
 
-// A measure of a series no writer of this variant records.
-std::string missing_series(const StudySpec& spec, const Simulation& simulation) {
+// The measures that name a series or a result no writer of this variant gives.
+std::string missing_outputs(const StudySpec& spec, const Simulation& simulation) {
   const std::vector<std::string> columns = simulation.output_series();
+  const std::vector<std::string> results = simulation.output_results();
   std::string problems;
+  auto report = [&](std::size_t k, const char* key, const std::string& what, const char* kind,
+                    const std::vector<std::string>& known, const char* none) {
+    problems += "error: " + spec.file + ": /measures/" + std::to_string(k) + "/" + key + ": no output of the scene " +
+                what + "\n       the scene's " + kind + ": " + (known.empty() ? std::string(none) : text::join(known)) +
+                "\n";
+  };
   for (std::size_t k = 0; k < spec.measures.size(); ++k) {
     const Measure& m = spec.measures[k];
-    if (m.series.empty() || std::find(columns.begin(), columns.end(), m.series) != columns.end()) continue;
-    problems += "error: " + spec.file + ": /measures/" + std::to_string(k) + "/series: no output of the scene records '" +
-                m.series + "'\n       the scene's series: " +
-                (columns.empty() ? std::string("none (add a \"probes\" output)") : text::join(columns)) + "\n";
+    if (!m.series.empty() && std::find(columns.begin(), columns.end(), m.series) == columns.end())
+      report(k, "series", "records '" + m.series + "'", "series", columns, "none (add a \"probes\" output)");
+    const std::string prefix = "/results/";
+    if (m.summary.starts_with(prefix)) {
+      const std::string name = m.summary.substr(prefix.size());
+      if (std::find(results.begin(), results.end(), name) == results.end())
+        report(k, "summary", "gives the result '" + name + "'", "results", results, "none");
+    }
   }
   return problems;
 }
@@ -49,7 +60,7 @@ std::vector<CheckedVariant> check_variants(const StudySpec& spec, const std::vec
       check_resources(scene, estimate);
       checked[v.index].bytes = estimate.bytes();
       const Simulation simulation(registry, std::move(scene));
-      problems = missing_series(spec, simulation);
+      problems = missing_outputs(spec, simulation);
     } catch (const InputError& e) {
       problems = e.what();
       if (!problems.ends_with("\n")) problems += "\n";

@@ -23,6 +23,13 @@ struct OutputContext {
   bool resume = false;
 };
 
+// One named result of a whole run (an analysis' wave height, its breaker type).
+struct WriterResult {
+  std::string name;
+  double number = 0.0;
+  std::string text;  // a textual result when not empty (then `number` is unused)
+};
+
 class TALUS_API Writer : public Model {
  public:
   ~Writer() override;
@@ -42,6 +49,11 @@ class TALUS_API Writer : public Model {
   // header), known once check() passes: `talus study` refuses a measure that
   // names none of them before anything runs. Writers of fields return none.
   virtual std::vector<std::string> series(const World& /*world*/) const { return {}; }
+  // Results of the whole run, known once close() ran: the run summary lists
+  // them under "results" / TYPE / NAME, where `talus study` measures name
+  // them; result_names() says before the run which there will be.
+  virtual std::vector<std::string> result_names() const { return {}; }
+  virtual std::vector<WriterResult> results() const { return {}; }
 };
 
 }  // namespace talus

@@ -1,0 +1,85 @@
+#include "breaker_analysis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "talus/series_file.hpp"
+#include "wave_analysis.hpp"
+
+namespace talus::writers {
+
+ParamSet BreakerAnalysis::describe() {
+  ParamSet w{"waves", "breaker analysis of the gauges' records at the end of the run"};
+  w.string("offshore").doc("the gauge offshore of the slope (a gauge name): the offshore height H0 and the period T");
+  w.string_list("surf").doc("the gauges in the surf zone: H is the largest of their mean wave heights");
+  w.real("slope").unit("deg").greater_than(0.0).less_than(90.0).optional().doc(
+      "the seaward slope angle phi (without it: the waves only, no Iribarren or Froude number, type unknown)");
+  w.real("water_depth").unit("m").greater_than(0.0).optional().doc(
+      "the still water depth d_w offshore (without it: no Froude number)");
+  w.real("from").unit("s").min(0.0).default_value(0.0).doc("analyse the records from this time on (skip the start-up)");
+  return w;
+}
+
+BreakerAnalysis::BreakerAnalysis(const ParamValues& params, const std::vector<std::string>& gauges)
+    : offshore_(params.string("offshore")),
+      surf_(params.strings("surf")),
+      slope_(params.has("slope") ? params.real("slope") : nan_),
+      water_depth_(params.has("water_depth") ? params.real("water_depth") : nan_),
+      from_(params.real("from")) {
+  std::string list;
+  for (const auto& g : gauges) list += (list.empty() ? "" : ", ") + g;
+  auto known = [&](const std::string& name, const char* key) {
+    if (std::find(gauges.begin(), gauges.end(), name) == gauges.end())
+      params.fail(key, "'" + name + "' is not a gauge of this probes writer; its gauges: " +
+                           (gauges.empty() ? std::string("none (give \"gauges\")") : list));
+  };
+  known(offshore_, "offshore");
+  if (surf_.empty()) params.fail("surf", "name at least one gauge in the surf zone");
+  for (const auto& name : surf_) known(name, "surf");
+}
+
+std::vector<std::string> BreakerAnalysis::result_names() const {
+  std::vector<std::string> names = {"offshore_height", "period", "surf_height", "surf_gauge", "waves",
+                                    "wavelength",      "iribarren", "froude",    "breaker_type"};
+  for (const auto& g : surf_) {
+    names.push_back(g + "_height");
+    names.push_back(g + "_period");
+  }
+  return names;
+}
+
+std::vector<WriterResult> BreakerAnalysis::analyse(const std::string& probes_file, double g) const {
+  std::vector<std::string> columns = {"time", offshore_ + "_elevation"};
+  for (const auto& s : surf_) columns.push_back(s + "_elevation");
+  const auto series = read_series(probes_file, columns);
+  const WaveStatistics offshore = zero_up_crossing(series[0], series[1], from_);
+  std::vector<WriterResult> results;
+  double surf_height = std::numeric_limits<double>::quiet_NaN();
+  std::string surf_gauge;
+  std::vector<WriterResult> per_gauge;
+  for (std::size_t k = 0; k < surf_.size(); ++k) {
+    const WaveStatistics s = zero_up_crossing(series[0], series[k + 2], from_);
+    per_gauge.push_back({surf_[k] + "_height", s.height, {}});
+    per_gauge.push_back({surf_[k] + "_period", s.period, {}});
+    if (s.waves > 0 && !(s.height <= surf_height)) {
+      surf_height = s.height;
+      surf_gauge = surf_[k];
+    }
+  }
+  const BreakerNumbers n =
+      breaker_numbers(surf_height, offshore.height, offshore.period, slope_, water_depth_, g);
+  results.push_back({"offshore_height", offshore.height, {}});
+  results.push_back({"period", offshore.period, {}});
+  results.push_back({"surf_height", surf_height, {}});
+  results.push_back({"surf_gauge", 0.0, surf_gauge.empty() ? "none" : surf_gauge});
+  results.push_back({"waves", static_cast<double>(offshore.waves), {}});
+  results.push_back({"wavelength", n.wavelength, {}});
+  results.push_back({"iribarren", n.iribarren, {}});
+  results.push_back({"froude", n.froude, {}});
+  results.push_back({"breaker_type", 0.0, n.type});
+  for (auto& r : per_gauge) results.push_back(std::move(r));
+  return results;
+}
+
+}  // namespace talus::writers

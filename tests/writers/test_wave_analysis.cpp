@@ -1,0 +1,147 @@
+// Wave analysis on analytic records: zero up-crossing heights and periods of
+// sampled sine and skewed (second-harmonic) waves, the breaker numbers and
+// classes by hand values, and the probes writer's "waves" section reading a
+// gauge file.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <numbers>
+#include <vector>
+
+#include "../common/process.hpp"
+#include "breaker_analysis.hpp"
+#include "probes_writer.hpp"
+#include "talus/error.hpp"
+#include "wave_analysis.hpp"
+#include "world_fixture.hpp"
+
+namespace talus {
+namespace {
+
+using writers::zero_up_crossing;
+
+// eta(t) = level + a cos(theta) + b cos(2 theta), theta = 2 pi t / T - 1 (not
+// starting on a crossing), sampled every T / per_wave.
+struct Record {
+  std::vector<double> t, eta;
+};
+Record waves(double level, double a, double b, double period, int per_wave, int count) {
+  Record r;
+  for (int k = 0; k <= per_wave * count; ++k) {
+    const double t = period * k / per_wave, theta = 2.0 * std::numbers::pi * t / period - 1.0;
+    r.t.push_back(t);
+    r.eta.push_back(level + a * std::cos(theta) + b * std::cos(2.0 * theta));
+  }
+  return r;
+}
+
+TEST(WaveAnalysis, ASampledSineGivesItsHeightAndPeriodWithinOnePercent) {
+  const Record r = waves(0.11, 0.01, 0.0, 1.7, 40, 20);
+  const auto s = zero_up_crossing(r.t, r.eta, 3.0);
+  // 40 samples a wave miss the crest by at most 1 - cos(pi/40) = 0.3 %.
+  EXPECT_NEAR(s.height, 0.02, 0.01 * 0.02);
+  EXPECT_NEAR(s.max_height, 0.02, 0.01 * 0.02);
+  EXPECT_NEAR(s.period, 1.7, 0.01 * 1.7);
+  EXPECT_NEAR(s.mean_level, 0.11, 1e-4);
+  // From t = 3 s to 34 s: 31 s / 1.7 s = 18.2 waves, 17 or 18 complete between crossings.
+  EXPECT_GE(s.waves, 17u);
+  EXPECT_LE(s.waves, 18u);
+}
+
+TEST(WaveAnalysis, ASkewedWaveGivesCrestToTroughNotTwiceTheAmplitude) {
+  // a cos + 0.3 a cos 2: crest 1.3 a, trough -0.71667 a (at cos theta = -1/1.2): H = 2.01667 a.
+  const Record r = waves(0.0, 0.02, 0.006, 0.8, 80, 12);
+  const auto s = zero_up_crossing(r.t, r.eta, 0.0);
+  EXPECT_NEAR(s.height, 2.0166667 * 0.02, 0.01 * 2.0166667 * 0.02);
+  EXPECT_NEAR(s.period, 0.8, 0.01 * 0.8);
+}
+
+TEST(WaveAnalysis, DrySamplesAreSkippedAndNoCompleteWaveIsNaN) {
+  Record r = waves(0.1, 0.01, 0.0, 1.0, 40, 10);
+  for (std::size_t k = 0; k < r.eta.size(); k += 7) r.eta[k] = std::nan("");
+  const auto s = zero_up_crossing(r.t, r.eta, 0.0);
+  EXPECT_NEAR(s.height, 0.02, 0.02 * 0.02);
+  EXPECT_NEAR(s.period, 1.0, 0.01);
+  const Record short_record = waves(0.1, 0.01, 0.0, 1.0, 40, 1);
+  const auto none = zero_up_crossing(short_record.t, short_record.eta, 0.5);
+  EXPECT_EQ(none.waves, 0u);
+  EXPECT_TRUE(std::isnan(none.height));
+  EXPECT_TRUE(std::isnan(none.period));
+}
+
+TEST(WaveAnalysis, BreakerNumbersAndClassesByHand) {
+  // T = 2 s: L0 = 9.81 * 4 / (2 pi) = 6.245240 m; phi = 20 deg, H = 0.05 m:
+  // xi = tan 20 / sqrt(0.05 / 6.245240) = 4.067761; H0 = 0.04 m, d_w = 0.11 m, f = 0.5 Hz:
+  // Fn = (0.04 / 6.245240) * 0.11 * 0.5 / sqrt(9.81 / tan 20) = 6.785346e-5.
+  const auto n = writers::breaker_numbers(0.05, 0.04, 2.0, 20.0, 0.11, 9.81);
+  EXPECT_NEAR(n.wavelength, 6.245240, 1e-6);
+  EXPECT_NEAR(n.iribarren, 4.067761, 1e-6);
+  EXPECT_NEAR(n.froude, 6.785346e-5, 1e-11);
+  EXPECT_EQ(n.type, "surging_or_collapsing");
+  EXPECT_EQ(writers::breaker_type(2.01), "surging_or_collapsing");
+  EXPECT_EQ(writers::breaker_type(2.0), "plunging");
+  EXPECT_EQ(writers::breaker_type(0.4), "plunging");
+  EXPECT_EQ(writers::breaker_type(0.39), "spilling");
+  EXPECT_EQ(writers::breaker_type(std::nan("")), "unknown");
+}
+
+TEST(WaveAnalysis, TheWavesSectionReadsTheGaugeRecordsOfAProbesFile) {
+  test::TempDir dir("waves-section");
+  const Record off = waves(0.11, 0.010, 0.0, 2.0, 40, 10), s1 = waves(0.11, 0.015, 0.0, 2.0, 40, 10),
+               s2 = waves(0.11, 0.012, 0.0, 2.0, 40, 10);
+  std::string csv = "# talus probes: scene test\ntime,step,OFF_elevation,S1_elevation,S2_elevation\n";
+  for (std::size_t k = 0; k < off.t.size(); ++k)
+    csv += std::to_string(off.t[k]) + "," + std::to_string(k) + "," + std::to_string(off.eta[k]) + "," +
+           std::to_string(s1.eta[k]) + "," + std::to_string(s2.eta[k]) + "\n";
+  const std::string file = dir.file("probes.csv");
+  test::write_file(file, csv + "20.05,40");  // a row cut short by a kill: left out
+  const auto params = params_from_json(writers::ProbesWriter::describe(),
+                                       R"({"gauges": [[1, 0], [2, 0], [3, 0]], "gauge_names": ["OFF", "S1", "S2"],
+                                           "waves": {"offshore": "OFF", "surf": ["S1", "S2"], "slope": 20,
+                                                     "water_depth": 0.11, "from": 2}})",
+                                       2);
+  const writers::BreakerAnalysis analysis(params.object("waves"), {"OFF", "S1", "S2"});
+  std::map<std::string, WriterResult> r;
+  for (const auto& result : analysis.analyse(file, 9.81)) r[result.name] = result;
+  EXPECT_NEAR(r["offshore_height"].number, 0.02, 2e-4);
+  EXPECT_NEAR(r["period"].number, 2.0, 0.02);
+  EXPECT_NEAR(r["surf_height"].number, 0.03, 3e-4);
+  EXPECT_EQ(r["surf_gauge"].text, "S1");
+  EXPECT_NEAR(r["S2_height"].number, 0.024, 2.4e-4);
+  const double xi = std::tan(20.0 * std::numbers::pi / 180.0) / std::sqrt(0.03 / (9.81 * 4.0 / (2.0 * std::numbers::pi)));
+  EXPECT_NEAR(r["iribarren"].number, xi, 0.01 * xi);
+  EXPECT_EQ(r["breaker_type"].text, writers::breaker_type(xi));
+  // Every result it announces before the run, it gives.
+  std::vector<std::string> given;
+  for (const auto& [name, value] : r) given.push_back(name);
+  std::vector<std::string> announced = analysis.result_names();
+  std::sort(announced.begin(), announced.end());
+  EXPECT_EQ(given, announced);
+  // Without a slope: the waves, but no breaker numbers.
+  const auto flat = params_from_json(writers::ProbesWriter::describe(),
+                                     R"({"gauges": [[1, 0], [2, 0]], "gauge_names": ["OFF", "S1"],
+                                         "waves": {"offshore": "OFF", "surf": ["S1"], "from": 2}})",
+                                     2);
+  std::map<std::string, WriterResult> f;
+  for (const auto& result : writers::BreakerAnalysis(flat.object("waves"), {"OFF", "S1"}).analyse(file, 9.81))
+    f[result.name] = result;
+  EXPECT_NEAR(f["surf_height"].number, 0.03, 3e-4);
+  EXPECT_TRUE(std::isnan(f["iribarren"].number));
+  EXPECT_TRUE(std::isnan(f["froude"].number));
+  EXPECT_EQ(f["breaker_type"].text, "unknown");
+  // Names that are not its gauges are refused, naming them.
+  try {
+    writers::BreakerAnalysis(params.object("waves"), {"OFF", "S2"});
+    ADD_FAILURE() << "accepted a surf gauge that is not a gauge";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/waves/surf: 'S1' is not a gauge of this probes writer; its gauges: OFF, S2"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace talus
