@@ -2,7 +2,7 @@
 // gauges recorded (zero up-crossing), the breaker numbers on the seaward
 // slope and the breaker type by the Iribarren number (wave_analysis.hpp).
 // Results go to the run summary (results/probes/...) and, beside the probes
-// file SCENE_probes.csv, SCENE_probes_waves.json.
+// file SCENE_probes.csv, SCENE_probes_results.json.
 #pragma once
 
 #include <limits>

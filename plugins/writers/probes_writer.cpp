@@ -10,6 +10,7 @@
 #include "talus/output_name.hpp"
 #include "talus/blocks.hpp"
 #include "talus/world.hpp"
+#include "talus/series_file.hpp"
 #include "vtu_format.hpp"  // format_real
 
 namespace talus::writers {
@@ -57,6 +58,12 @@ ParamSet ProbesWriter::describe() {
       .doc("the axis the gauges measure along; default the axis gravity points along (then required when gravity "
            "is zero or along no axis)");
   p.string_list("gauge_names").optional().doc("column prefixes of the gauges, one per gauge; default G1, G2, ...");
+  p.vector_list("bed_gauges").optional().unit("m").doc(
+      "bed gauges: like gauges, but they find the surface of the particles of one material (a sediment bank's "
+      "profile), column NAME_bed; given along a line, in order, they give the bed's eroded and deposited "
+      "cross-section between the first and the last row (results bed_eroded_area, bed_deposited_area)");
+  p.string_list("bed_gauge_names").optional().doc("column prefixes of the bed gauges; default B1, B2, ...");
+  p.string("bed_material").optional().doc("the material whose surface the bed gauges find");
   p.real("gauge_step")
       .unit("m")
       .greater_than(0.0)
@@ -94,8 +101,8 @@ ParamSet ProbesWriter::describe() {
   p.object("waves", BreakerAnalysis::describe())
       .optional()
       .doc("at the end of the run, the waves the gauges recorded: heights and period (zero up-crossing), "
-           "Iribarren and Froude numbers, breaker type; in the run summary (results/probes) and FILE_waves.json beside "
-           "the probes file");
+           "Iribarren and Froude numbers, breaker type; in the run summary (results/probes) and FILE_results.json "
+           "beside the probes file");
   p.boolean("block_forces")
       .default_value(false)
       .doc("external force on every block (the coupling force of the last step): NAME_fx, NAME_fy[, NAME_fz]");
@@ -113,20 +120,29 @@ ProbesWriter::ProbesWriter(const ParamValues& params) : params_(params) {
   } else {
     for (std::size_t i = 0; i < points_.size(); ++i) point_names_.push_back("P" + std::to_string(i + 1));
   }
-  if (given_points(params, "gauges")) {
-    const auto at = params.vectors("gauges");
-    std::vector<std::string> names;
-    if (given_strings(params, "gauge_names")) {
-      names = params.strings("gauge_names");
-      if (names.size() != at.size())
-        params.fail("gauge_names", std::to_string(names.size()) + " names for " + std::to_string(at.size()) +
-                                       " gauges; give one name per gauge");
+  auto read_gauges = [&](const char* key, const char* names_key, const char* prefix) {
+    std::vector<Gauge> gauges;
+    if (given_points(params, key)) {
+      const auto at = params.vectors(key);
+      std::vector<std::string> names;
+      if (given_strings(params, names_key)) {
+        names = params.strings(names_key);
+        if (names.size() != at.size())
+          params.fail(names_key, std::to_string(names.size()) + " names for " + std::to_string(at.size()) +
+                                     " gauges; give one name per gauge");
+      }
+      for (std::size_t i = 0; i < at.size(); ++i)
+        gauges.push_back({names.empty() ? prefix + std::to_string(i + 1) : names[i], at[i]});
+    } else if (given_strings(params, names_key)) {
+      params.fail(names_key, "names given but no gauges");
     }
-    for (std::size_t i = 0; i < at.size(); ++i)
-      gauges_.push_back({names.empty() ? "G" + std::to_string(i + 1) : names[i], at[i]});
-  } else if (given_strings(params, "gauge_names")) {
-    params.fail("gauge_names", "names given but no gauges");
-  }
+    return gauges;
+  };
+  gauges_ = read_gauges("gauges", "gauge_names", "G");
+  bed_gauges_ = read_gauges("bed_gauges", "bed_gauge_names", "B");
+  if (!bed_gauges_.empty() && !params.has("bed_material"))
+    params.fail("bed_gauges", "bed gauges need \"bed_material\": the material whose surface they find");
+  if (bed_gauges_.size() == 1) bed_change_ = false;
   if (given_points(params, "wall_sensors")) {
     const auto at = params.vectors("wall_sensors");
     const auto normals = given_points(params, "wall_sensor_normals") ? params.vectors("wall_sensor_normals")
@@ -228,6 +244,10 @@ void ProbesWriter::resolve_columns(const World& world) {
     }
   for (const auto& g : gauges_) {
     names_.push_back(g.name + "_elevation");
+    units_.push_back("m");
+  }
+  for (const auto& g : bed_gauges_) {
+    names_.push_back(g.name + "_bed");
     units_.push_back("m");
   }
   for (auto q : integrals_) {
@@ -359,7 +379,7 @@ void ProbesWriter::open(const OutputContext& context, const World& world) {
   prepare(world);
   path_ =
       join_path(context.directory, params_.has("file") ? params_.string("file") : context.scene_name + "_probes.csv");
-  waves_path_ = (path_.ends_with(".csv") ? path_.substr(0, path_.size() - 4) : path_) + "_waves.json";
+  results_path_ = (path_.ends_with(".csv") ? path_.substr(0, path_.size() - 4) : path_) + "_results.json";
   const std::string header = join(names_, ",");
   std::uint64_t last_kept_step = 0;
   bool kept_rows = false;
@@ -393,9 +413,10 @@ void ProbesWriter::prepare(const World& world) {
         params_.fail(key, std::string("needs the field '") + f +
                               "' on fluid and wall particles (an SPH stage with wall particles)");
   }
-  if (!points_.empty() || !gauges_.empty() || !wall_bodies_.empty() || !sensors_.empty()) {
+  if (!points_.empty() || !gauges_.empty() || !bed_gauges_.empty() || !wall_bodies_.empty() || !sensors_.empty()) {
     const char* key = !points_.empty() ? "points"
                       : !gauges_.empty() ? "gauges"
+                      : !bed_gauges_.empty() ? "bed_gauges"
                       : !wall_bodies_.empty() ? "wall_forces"
                                               : "wall_sensors";
     if (!(world.kernel.support_radius() > 0.0))
@@ -411,6 +432,15 @@ void ProbesWriter::prepare(const World& world) {
     for (const auto& g : gauges_)
       if (!inside(g.at, true))
         params_.fail("gauges", g.name + " at " + point_text(g.at, world.dim) + " is outside the domain");
+    for (const auto& g : bed_gauges_)
+      if (!inside(g.at, true))
+        params_.fail("bed_gauges", g.name + " at " + point_text(g.at, world.dim) + " is outside the domain");
+    if (!bed_gauges_.empty()) {
+      bed_material_ = world.find_material(params_.string("bed_material"));
+      if (bed_material_ < 0 || !world.fluid.has("material"))
+        params_.fail("bed_material", "'" + params_.string("bed_material") + "' is not a fluid material of this scene");
+      bed_sampler_.configure(world.dim, world.lo, world.hi, world.periodic, world.kernel);
+    }
     sampler_.configure(world.dim, world.lo, world.hi, world.periodic, world.kernel);
     if (gauge_step_ <= 0.0) gauge_step_ = world.dp > 0.0 ? 0.25 * world.dp : 0.25 * world.kernel.h();
   }
@@ -576,7 +606,7 @@ void ProbesWriter::write(const World& world) {
     row_ += format_real(v);
   };
 
-  if (!points_.empty() || !gauges_.empty() || !wall_bodies_.empty() || !sensors_.empty()) {
+  if (!points_.empty() || !gauges_.empty() || !bed_gauges_.empty() || !wall_bodies_.empty() || !sensors_.empty()) {
     const std::size_t n = fluid.size();
     volume_.resize(n);
     if (fluid.has("mass") && fluid.has("density")) {
@@ -626,6 +656,15 @@ void ProbesWriter::write(const World& world) {
     }
     put(elevation);
   }
+  if (!bed_gauges_.empty()) {  // the fill fraction of the bed material's particles alone
+    const auto material = fluid.integer("material");
+    bed_volume_.resize(fluid.size());
+#pragma omp parallel for
+    for (std::size_t i = 0; i < fluid.size(); ++i) bed_volume_[i] = material[i] == bed_material_ ? volume_[i] : 0.0;
+    bed_sampler_.bind(fluid.position(), bed_volume_);
+  }
+  for (auto& g : bed_gauges_)
+    put(surface_elevation(bed_sampler_, g.at, vertical_, bottom, top, gauge_step_, gauge_threshold_));
   for (auto q : integrals_) put(integral(q, world));
   for (int body : wall_bodies_) {
     const Vec3 f = wall_force(body, world);
@@ -644,10 +683,34 @@ void ProbesWriter::write(const World& world) {
   last_step_ = world.step;
 }
 
+// The bed's change between the first and the last row along the bed gauges'
+// line: eroded and deposited cross-section by the trapezoidal rule in the
+// horizontal distance between gauges (a segment with a dry end is left out).
+std::vector<WriterResult> ProbesWriter::bed_change() const {
+  std::vector<std::string> columns = {"time"};
+  for (const auto& g : bed_gauges_) columns.push_back(g.name + "_bed");
+  const auto series = read_series(path_, columns);
+  double eroded = 0.0, deposited = 0.0;
+  const std::size_t last = series[0].size() - 1;
+  auto change = [&](std::size_t k) { return series[k + 1][last] - series[k + 1][0]; };
+  for (std::size_t k = 0; k + 1 < bed_gauges_.size() && !series[0].empty(); ++k) {
+    Vec3 step = bed_gauges_[k + 1].at - bed_gauges_[k].at;
+    step[vertical_] = 0.0;
+    const double a = change(k), b = change(k + 1), width = norm(step);
+    if (!std::isfinite(a) || !std::isfinite(b)) continue;
+    eroded += 0.5 * (std::max(0.0, -a) + std::max(0.0, -b)) * width;
+    deposited += 0.5 * (std::max(0.0, a) + std::max(0.0, b)) * width;
+  }
+  return {{"bed_eroded_area", eroded, {}}, {"bed_deposited_area", deposited, {}}};
+}
+
 void ProbesWriter::close(const World& world) {
   file_.close();
-  if (!waves_ || path_.empty()) return;
-  results_ = waves_->analyse(path_, norm(world.gravity));
+  if (path_.empty() || result_names().empty()) return;
+  results_.clear();
+  if (waves_) results_ = waves_->analyse(path_, norm(world.gravity));
+  if (bed_change_ && !bed_gauges_.empty())
+    for (auto& r : bed_change()) results_.push_back(std::move(r));
   std::string json = "{\n";
   for (std::size_t k = 0; k < results_.size(); ++k) {
     const WriterResult& r = results_[k];
@@ -657,18 +720,23 @@ void ProbesWriter::close(const World& world) {
     json += "  \"" + r.name + "\": " + value + (k + 1 < results_.size() ? ",\n" : "\n");
   }
   json += "}\n";
-  const std::string tmp = waves_path_ + ".tmp";
+  const std::string tmp = results_path_ + ".tmp";
   write_whole_file(tmp, json);
-  publish(tmp, waves_path_, false);
+  publish(tmp, results_path_, false);
 }
 
 std::vector<std::string> ProbesWriter::result_names() const {
-  return waves_ ? waves_->result_names() : std::vector<std::string>{};
+  std::vector<std::string> names = waves_ ? waves_->result_names() : std::vector<std::string>{};
+  if (bed_change_ && !bed_gauges_.empty()) {
+    names.push_back("bed_eroded_area");
+    names.push_back("bed_deposited_area");
+  }
+  return names;
 }
 
 std::vector<std::string> ProbesWriter::files() const {
   if (path_.empty()) return {};
-  if (!results_.empty()) return {path_, waves_path_};
+  if (!results_.empty()) return {path_, results_path_};
   return {path_};
 }
 

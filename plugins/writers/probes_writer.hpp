@@ -83,6 +83,7 @@ class ProbesWriter final : public Writer {
   // `step`); 0 to start afresh.
   std::size_t resume_bytes(const std::string& header, std::uint64_t step, std::uint64_t& last_step, bool& rows) const;
   double integral(Quantity q, const World& world) const;
+  std::vector<WriterResult> bed_change() const;
   Vec3 wall_force(int body, const World& world) const;
   // The fields the wall force reads, looked up once per row.
   struct ForceFields {
@@ -102,7 +103,9 @@ class ProbesWriter final : public Writer {
   ParamValues params_;
   std::vector<Vec3> points_;
   std::vector<std::string> point_names_;
-  std::vector<Gauge> gauges_;
+  std::vector<Gauge> gauges_, bed_gauges_;
+  int bed_material_ = -1;
+  bool bed_change_ = true;  // two bed gauges or more: the eroded and deposited cross-section
   std::vector<Quantity> integrals_;
   bool block_forces_ = false;
   std::vector<int> wall_bodies_;  // scene body indices
@@ -118,10 +121,10 @@ class ProbesWriter final : public Writer {
   std::size_t block_count_ = 0;
   std::optional<BreakerAnalysis> waves_;
   std::vector<WriterResult> results_;
-  std::string path_, waves_path_;
+  std::string path_, results_path_;
   LineFile file_;
-  SphSampler sampler_;
-  std::vector<double> volume_;
+  SphSampler sampler_, bed_sampler_;
+  std::vector<double> volume_, bed_volume_;
   std::vector<Neighbour> neighbours_;
   std::string row_;
   bool have_last_step_ = false;

@@ -15,6 +15,7 @@
 #include "process.hpp"
 #include "run_summary.hpp"
 #include "study/study_spec.hpp"
+#include "study/study_table.hpp"
 #include "study/variants.hpp"
 #include "talus/error.hpp"
 
@@ -302,6 +303,38 @@ TEST(StudyPieces, GridPutsTheValuesAtThePointersLastAxisFastest) {
   EXPECT_THROW(talus::study::expand_variants(spec, base), talus::InputError);
   spec.axes[0].pointer = "x";
   EXPECT_THROW(talus::study::expand_variants(spec, base), talus::InputError);
+}
+
+// Measures read back from a finished run's folder: summary values, a null
+// result said in the row's error, series reduced over their window.
+TEST(StudyPieces, MeasuresComeFromTheSummaryAndTheSeriesFiles) {
+  const std::string dir = std::string(TALUS_BINARY_DIR) + "/tests/study_measures";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  write_file(dir + "/p.csv", "# units: s,,m\ntime,step,G1_elevation\n0,0,0.1\n1,10,0.3\n2,20,nan\n3,30,-0.2\n4,40,0.");
+  write_file(dir + "/summary.json", R"({"steps": 40, "results": {"probes": {"xi": null, "H": 0.02}},
+                                        "outputs": {"probes": [")" + dir + R"(/p.csv"], "hdf5": []}})");
+  talus::study::StudySpec spec;
+  using talus::study::Reduce;
+  spec.measures = {{"steps", "/steps"},
+                   {"xi", "/results/probes/xi"},
+                   {"H", "/results/probes/H"},
+                   {"top", "", "G1_elevation", Reduce::max},
+                   {"swing", "", "G1_elevation", Reduce::range, 0.5},
+                   {"mean_late", "", "G1_elevation", Reduce::mean, 0.5, 3.0, true},
+                   {"gone", "", "G2_elevation"}};
+  std::string problems;
+  const auto values = talus::study::read_measures(spec, dir, problems);
+  EXPECT_EQ(values[0], 40);
+  EXPECT_TRUE(values[1].is_null());
+  EXPECT_EQ(values[2], 0.02);
+  EXPECT_EQ(values[3], 0.3);
+  EXPECT_DOUBLE_EQ(values[4].get<double>(), 0.5);  // 0.3 - (-0.2); nan skipped, the cut last row left out
+  EXPECT_DOUBLE_EQ(values[5].get<double>(), 0.05);
+  EXPECT_TRUE(values[6].is_null());
+  EXPECT_NE(problems.find("xi: no value (/results/probes/xi is null in the summary)"), std::string::npos) << problems;
+  EXPECT_NE(problems.find("gone: no series file of the run has a column 'G2_elevation'"), std::string::npos)
+      << problems;
 }
 
 // The keys a measure may name are the keys the summary has.

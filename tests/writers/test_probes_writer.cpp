@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <map>
 #include <iostream>
 #include <sstream>
 
@@ -142,6 +144,54 @@ TEST(ProbesWriter, WaveGaugeFindsAFlatFreeSurface) {
   std::cout << "gauge error: " << (csv.rows[0][column(csv, "mid_elevation")] - depth) / dp << " dp\n";
   EXPECT_NEAR(csv.rows[0][column(csv, "mid_elevation")], depth, 0.1 * dp);
   EXPECT_NEAR(csv.rows[0][column(csv, "left_elevation")], depth, 0.1 * dp);
+}
+
+// Bed gauges find the top of one material under another, and the bed's change
+// between the first and the last row: sand 0.05 m deep under water to 0.1 m; the
+// sand left of x = 0.2 sinks 0.02 m. Gauges 0.1 m apart (beyond the kernel's
+// 2.6 dp support from the step): eroded = 0.02 * 0.1 (between B1 and B2) +
+// 0.5 * 0.02 * 0.1 (B2 to B3) = 0.003 m^2 per metre, deposited none.
+TEST(ProbesWriter, BedGaugesFindOneMaterialsSurfaceAndItsChange) {
+  TempDir dir("probes-bed");
+  World w;
+  const double dp = 0.01;
+  w.lo = {0, 0, 0};
+  w.hi = {0.4, 0.3, 0};
+  w.gravity = {0, -9.81, 0};
+  w.materials = {{"water"}, {"sand"}};
+  test::fill_lattice(w, 2, w.lo, 40, 10, 1, dp);
+  auto x = w.fluid.position();
+  auto material = w.fluid.material();
+  for (std::size_t i = 0; i < w.fluid.size(); ++i) material[i] = x[i].y < 0.05 ? 1 : 0;
+  writers::ProbesWriter writer(params_from_json(writers::ProbesWriter::describe(),
+                                                R"({"gauges": [[0.3, 0]], "gauge_names": ["W"],
+                                                    "bed_gauges": [[0.05, 0], [0.15, 0], [0.25, 0], [0.35, 0]],
+                                                    "bed_material": "sand", "integrals": []})",
+                                                2));
+  EXPECT_EQ(writer.result_names(), (std::vector<std::string>{"bed_eroded_area", "bed_deposited_area"}));
+  writer.open(test::context_for(dir.str()), w);
+  writer.write(w);
+  for (std::size_t i = 0; i < w.fluid.size(); ++i)
+    if (material[i] == 1 && x[i].x < 0.2) x[i].y -= 0.02;
+  w.time = 1.0;
+  w.step = 1;
+  writer.write(w);
+  writer.close(w);
+  const Csv csv = read_csv(dir.file("scene_probes.csv"));
+  ASSERT_EQ(csv.rows.size(), 2u);
+  EXPECT_NEAR(csv.rows[0][column(csv, "W_elevation")], 0.1, 0.1 * dp);
+  for (const char* b : {"B1_bed", "B2_bed", "B3_bed", "B4_bed"}) EXPECT_NEAR(csv.rows[0][column(csv, b)], 0.05, 0.1 * dp);
+  EXPECT_NEAR(csv.rows[1][column(csv, "B1_bed")], 0.03, 0.1 * dp);
+  EXPECT_NEAR(csv.rows[1][column(csv, "B4_bed")], 0.05, 0.1 * dp);
+  std::map<std::string, double> r;
+  for (const auto& result : writer.results()) r[result.name] = result.number;
+  EXPECT_NEAR(r["bed_eroded_area"], 0.003, 0.05 * dp * 0.1);
+  EXPECT_NEAR(r["bed_deposited_area"], 0.0, 0.05 * dp * 0.1);
+  EXPECT_TRUE(std::filesystem::exists(dir.file("scene_probes_results.json")));
+  // A bed material the scene does not have is refused at the check.
+  writers::ProbesWriter wrong(params_from_json(writers::ProbesWriter::describe(),
+                                               R"({"bed_gauges": [[0.05, 0]], "bed_material": "gravel"})", 2));
+  EXPECT_THROW(wrong.check(w), InputError);
 }
 
 // The gauge's elevation of one surface along gravity: the tank of the test

@@ -96,8 +96,9 @@ std::vector<nlohmann::json> read_measures(const StudySpec& spec, const std::stri
     const Measure& m = spec.measures[k];
     if (!m.summary.empty()) {
       const nlohmann::json::json_pointer pointer(m.summary);
-      if (summary.contains(pointer)) values[k] = summary[pointer];
-      else problem(m.name + ": the summary has no " + m.summary);
+      if (!summary.contains(pointer)) problem(m.name + ": the summary has no " + m.summary);
+      else if (summary[pointer].is_null()) problem(m.name + ": no value (" + m.summary + " is null in the summary)");
+      else values[k] = summary[pointer];
       continue;
     }
     const auto file = std::find_if(files.begin(), files.end(), [&](const auto& f) { return has_column(f, m.series); });
