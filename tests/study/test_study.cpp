@@ -171,6 +171,23 @@ TEST(Study, EveryBadInputIsNamedBeforeAnythingRuns) {
   EXPECT_FALSE(fs::exists(dir + "/out"));
 }
 
+TEST(Study, AStudyOfMoreThanTenThousandVariantsIsRefusedBeforeAnyIsMade) {
+  const std::string dir = scratch("huge", R"({
+    "base": "study_ballistic.json",
+    "axes": [ { "pointer": "/time/end", "range": { "from": 0.01, "to": 0.02, "count": 200 } },
+              { "pointer": "/pipeline/0/dt", "range": { "from": 0.001, "to": 0.002, "count": 9007199254740993 } } ]
+  })");
+  const auto r = run_command(exe + " study " + dir + "/study.json --dry-run");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("/axes/1/range/count: 9007199254740992 is out of range; must be >= 1 and <= 10000"),
+            std::string::npos)
+      << r.output;
+  write_file(dir + "/study.json", replaced(read_file(dir + "/study.json"), "9007199254740993", "200"));
+  const auto grid = run_command(exe + " study " + dir + "/study.json --dry-run");
+  EXPECT_EQ(grid.exit_code, 2) << grid.output;
+  EXPECT_NE(grid.output.find("/axes: these axes give more than 10000 variants"), std::string::npos) << grid.output;
+}
+
 TEST(Study, AFailedVariantIsMarkedAndTheOthersRun) {
   const std::string dir = scratch("failed", R"({
     "base": "study_ballistic.json",
@@ -256,6 +273,9 @@ TEST(Study, ZipTakesTheKthValuesTogetherAndDryRunWritesNothing) {
   EXPECT_NE(dry.output.find("  001  end=0.01, dt=0.001\n  002  end=0.02, dt=0.002\n"), std::string::npos)
       << dry.output;
   EXPECT_FALSE(fs::exists(dir + "/out"));
+  // From the study's own folder, with the base beside it (a base path with no folder part).
+  const auto here = run_command("cd " + dir + " && " + exe + " study study.json --dry-run");
+  EXPECT_EQ(here.exit_code, 0) << here.output;
   write_file(dir + "/study.json", R"({
     "base": "study_ballistic.json", "combine": "zip",
     "axes": [ { "pointer": "/time/end", "values": [0.01, 0.02] }, { "pointer": "/pipeline/0/dt", "values": [0.001] } ]

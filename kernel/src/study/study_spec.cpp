@@ -25,7 +25,7 @@ ParamSet range_params() {
   ParamSet r{"range", "evenly spaced numbers"};
   r.real("from").doc("first value");
   r.real("to").doc("last value");
-  r.integer("count").min(1).doc("how many values, both ends included");
+  r.integer("count").min(1).max(static_cast<double>(max_variants)).doc("how many values, both ends included");
   return r;
 }
 
@@ -148,6 +148,12 @@ StudySpec load_study(const std::string& path) {
     claim(a, a.has("name") ? "name" : "pointer", axis.name);
     spec.axes.push_back(std::move(axis));
   }
+  std::size_t variants = 1;  // of the grid, counted up to one past the limit
+  for (const auto& axis : spec.axes) variants = std::min(variants * std::min(axis.values.size(), max_variants + 1), max_variants + 1);
+  if (spec.zip && !spec.axes.empty()) variants = spec.axes.front().values.size();
+  if (variants > max_variants)
+    d.error(v, "axes", "these axes give more than " + std::to_string(max_variants) +
+                           " variants; split the study or use fewer values");
   if (spec.zip)
     for (std::size_t k = 1; k < spec.axes.size(); ++k)
       if (spec.axes[k].values.size() != spec.axes[0].values.size())

@@ -42,6 +42,9 @@ struct StudySpec {
   double checkpoint_minutes = 10.0;
 };
 
+// More variants than this are refused: each is checked before any runs.
+inline constexpr std::size_t max_variants = 10000;
+
 TALUS_API ParamSet study_params();
 
 // Reads and checks a study file; throws InputError listing every problem.

@@ -45,7 +45,7 @@ std::string missing_outputs(const StudySpec& spec, const Simulation& simulation)
 
 std::vector<CheckedVariant> check_variants(const StudySpec& spec, const std::vector<Variant>& variants,
                                            PluginRegistry& registry) {
-  const fs::path base_dir = fs::absolute(fs::path(spec.base_scene).parent_path());
+  const fs::path base_dir = fs::absolute(spec.base_scene).parent_path();
   const std::string name = fs::path(spec.base_scene).stem().string();
   std::vector<CheckedVariant> checked(variants.size());
   std::string report;
