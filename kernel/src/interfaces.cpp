@@ -16,6 +16,16 @@
 
 namespace talus {
 
+namespace {
+std::string without_nul(const std::string& what) {
+  std::string text;
+  for (char c : what) text += c == '\0' ? std::string("\\u0000") : std::string(1, c);
+  return text;
+}
+}  // namespace
+
+Error::Error(const std::string& what) : std::runtime_error(without_nul(what)) {}
+Error::Error(const char* what) : std::runtime_error(what) {}
 Error::~Error() = default;
 InputError::~InputError() = default;
 RunError::~RunError() = default;

@@ -251,6 +251,10 @@ class Validator {
           error(p, "expected a file name, got " + describe(j));
           return false;
         }
+        if (j.get<std::string>().find('\0') != std::string::npos) {
+          error(p, "a file name cannot hold a NUL byte, got " + describe(j));
+          return false;
+        }
         std::filesystem::path path = j.get<std::string>();
         if (c_.path_pointers) c_.path_pointers->push_back(p);
         if (path.is_relative()) path = std::filesystem::path(c_.base_dir) / path;

@@ -171,6 +171,24 @@ TEST(Study, EveryBadInputIsNamedBeforeAnythingRuns) {
   EXPECT_FALSE(fs::exists(dir + "/out"));
 }
 
+// What the study fuzzer found: a NUL byte in a value cut the messages short, and
+// in a file name it named the folder before it.
+TEST(Study, ANulByteIsShownAndRefusedInAFileName) {
+  const std::string dir = scratch("nul", R"({
+    "base": "study_ballistic.json",
+    "axes": [ { "pointer": "/time/end", "values": [0.01, "a\u0000b"] } ]
+  })");
+  const auto r = run_command(exe + " study " + dir + "/study.json --dry-run");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("variant 002 (/time/end=a\\u0000b):\nerror: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("/time/end: expected a number, got the string \"a\\u0000b\""), std::string::npos) << r.output;
+  write_file(dir + "/study.json", R"({"base": "\u0000", "axes": [ { "pointer": "/time/end", "values": [0.01] } ]})");
+  const auto base = run_command(exe + " study " + dir + "/study.json --dry-run");
+  EXPECT_EQ(base.exit_code, 2) << base.output;
+  EXPECT_NE(base.output.find("/study.json: /base: a file name cannot hold a NUL byte"), std::string::npos)
+      << base.output;
+}
+
 TEST(Study, AStudyOfMoreThanTenThousandVariantsIsRefusedBeforeAnyIsMade) {
   const std::string dir = scratch("huge", R"({
     "base": "study_ballistic.json",

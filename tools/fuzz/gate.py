@@ -23,6 +23,11 @@ DEFERRED = "memory: "
 ASAN_OUT_OF_MEMORY = re.compile(r"(allocation-size-too-big|out-of-memory|allocator is out of memory|"
                                 r"exceeds maximum supported size)")
 SUMMARY = re.compile(r"^\d+ errors? in .*; nothing was run\.$")
+# `talus study`: each failing variant's errors under a header, and a closing count.
+VARIANT_HEADER = re.compile(r"^variant \d+ \(.*\):$")
+STUDY_SUMMARY = re.compile(r"^\d+ of \d+ variants of .* cannot run; nothing was run\.$")
+# A variant's errors name the base scene and the variant; a base that is not JSON is named with line:column.
+STUDY_NAMES = r"(.+ \[variant \d+: .*\]: /|[^ ]+:\d+:\d+: )"
 
 
 def signal_name(code):
@@ -35,8 +40,9 @@ def signal_name(code):
 def check(command, scene, code, stderr, written):
     """Violations (short strings) of one invocation; [] when it passes.
 
-    scene: the scene path as given on the command line; written: paths the
-    invocation created that it must not have (for exit 2)."""
+    scene: the scene (or study) path as given on the command line; written:
+    paths the invocation created that it must not have (for exit 2)."""
+    study = command == "study"
     problems = []
     if code < 0:
         return ["killed by %s" % signal_name(code)]
@@ -66,11 +72,14 @@ def check(command, scene, code, stderr, written):
         for l in lines:
             if l.startswith("error: ") or l[:1].isspace() or SUMMARY.match(l):
                 continue
+            if study and (VARIANT_HEADER.match(l) or STUDY_SUMMARY.match(l)):
+                continue
             problems.append("line without 'error: ': %s" % l[:120])
             break
     if code == 2:
         # Whatever follows the file name: a pointer ("/" or "/a/0") or L:C.
-        named = re.compile(r"^error: " + re.escape(scene) + r"(: /|:\d+:\d+: )")
+        named = re.compile(r"^error: (" + re.escape(scene) + r"(: /|:\d+:\d+: )" + ("|" + STUDY_NAMES if study else "") +
+                           ")")
         for l in stderr.splitlines():
             if l.startswith("error: ") and not named.match(l):
                 problems.append("error without file and JSON pointer: %s" % l[:160])

@@ -11,7 +11,9 @@ namespace talus {
 
 class TALUS_API Error : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  // A NUL byte (from a string in the input) would end what() early: it reads \u0000.
+  explicit Error(const std::string& what);
+  explicit Error(const char* what);
   ~Error() override;
 };
 
