@@ -40,8 +40,10 @@ BreakerAnalysis::BreakerAnalysis(const ParamValues& params, const std::vector<st
 }
 
 std::vector<std::string> BreakerAnalysis::result_names() const {
-  std::vector<std::string> names = {"offshore_height", "period", "surf_height", "surf_gauge", "waves",
-                                    "wavelength",      "iribarren", "froude",    "breaker_type"};
+  std::vector<std::string> names = {"offshore_height", "period",        "surf_height",   "surf_gauge",
+                                    "waves",           "wavelength",    "iribarren",     "froude",
+                                    "breaker_type",    "overturned",    "overturn_gauge", "overturn_time",
+                                    "observed_type"};
   for (const auto& g : surf_) {
     names.push_back(g + "_height");
     names.push_back(g + "_period");
@@ -52,6 +54,7 @@ std::vector<std::string> BreakerAnalysis::result_names() const {
 std::vector<WriterResult> BreakerAnalysis::analyse(const std::string& probes_file, double g) const {
   std::vector<std::string> columns = {"time", offshore_ + "_elevation"};
   for (const auto& s : surf_) columns.push_back(s + "_elevation");
+  for (const auto& s : surf_) columns.push_back(s + "_air_below");
   const auto series = read_series(probes_file, columns);
   const WaveStatistics offshore = zero_up_crossing(series[0], series[1], from_);
   std::vector<WriterResult> results;
@@ -78,6 +81,21 @@ std::vector<WriterResult> BreakerAnalysis::analyse(const std::string& probes_fil
   results.push_back({"iribarren", n.iribarren, {}});
   results.push_back({"froude", n.froude, {}});
   results.push_back({"breaker_type", 0.0, n.type});
+  // The first row in the window where a surf gauge found air under the surface.
+  double overturn_time = std::numeric_limits<double>::quiet_NaN();
+  std::string overturn_gauge;
+  for (std::size_t row = 0; row < series[0].size() && overturn_gauge.empty(); ++row)
+    for (std::size_t k = 0; k < surf_.size(); ++k)
+      if (series[0][row] >= from_ && series[2 + surf_.size() + k][row] > 0.0) {
+        overturn_time = series[0][row];
+        overturn_gauge = surf_[k];
+        break;
+      }
+  const bool overturned = !overturn_gauge.empty();
+  results.push_back({"overturned", 0.0, overturned ? "yes" : "no"});
+  results.push_back({"overturn_gauge", 0.0, overturned ? overturn_gauge : "none"});
+  results.push_back({"overturn_time", overturn_time, {}});
+  results.push_back({"observed_type", 0.0, overturned ? "plunging" : "not_overturning"});
   for (auto& r : per_gauge) results.push_back(std::move(r));
   return results;
 }

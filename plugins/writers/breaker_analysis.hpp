@@ -1,6 +1,8 @@
 // The probes writer's "waves" section: at the end of a run, the waves its
 // gauges recorded (zero up-crossing), the breaker numbers on the seaward
-// slope and the breaker type by the Iribarren number (wave_analysis.hpp).
+// slope and the breaker type by the Iribarren number (wave_analysis.hpp);
+// beside it, what the water did: whether a surf gauge saw air under the
+// surface (an overturning crest), where and when first.
 // Results go to the run summary (results/probes/...) and, beside the probes
 // file SCENE_probes.csv, SCENE_probes_results.json.
 #pragma once
@@ -21,6 +23,8 @@ class BreakerAnalysis {
   BreakerAnalysis(const ParamValues& params, const std::vector<std::string>& gauges);
 
   std::vector<std::string> result_names() const;
+  // The gauges whose air under the surface the probes writer records (NAME_air_below).
+  const std::vector<std::string>& surf_gauges() const { return surf_; }
   // Reads the gauges' records from the probes file; g = |gravity|.
   std::vector<WriterResult> analyse(const std::string& probes_file, double g) const;
 

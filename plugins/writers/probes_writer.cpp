@@ -176,6 +176,8 @@ ProbesWriter::ProbesWriter(const ParamValues& params) : params_(params) {
     std::vector<std::string> gauge_names;
     for (const auto& g : gauges_) gauge_names.push_back(g.name);
     waves_.emplace(params.object("waves"), gauge_names);
+    for (auto& g : gauges_)
+      g.air = std::find(waves_->surf_gauges().begin(), waves_->surf_gauges().end(), g.name) != waves_->surf_gauges().end();
   }
   const std::vector<std::string> defaults{"mass", "kinetic_energy", "particles"};
   for (const auto& name : given_strings(params, "integrals") ? params.strings("integrals") : defaults) {
@@ -246,6 +248,11 @@ void ProbesWriter::resolve_columns(const World& world) {
     names_.push_back(g.name + "_elevation");
     units_.push_back("m");
   }
+  for (const auto& g : gauges_)
+    if (g.air) {
+      names_.push_back(g.name + "_air_below");
+      units_.push_back("m");
+    }
   for (const auto& g : bed_gauges_) {
     names_.push_back(g.name + "_bed");
     units_.push_back("m");
@@ -655,7 +662,14 @@ void ProbesWriter::write(const World& world) {
                          " s (the line is dry): its column reads NaN while it stays dry");
     }
     put(elevation);
+    g.elevation = elevation;
   }
+  const double min_gap = world.dp > 0.0 ? world.dp : world.kernel.h();
+  for (const auto& g : gauges_)
+    if (g.air)
+      put(std::isnan(g.elevation) ? 0.0
+                                  : air_below(sampler_, g.at, vertical_, g.elevation, bottom, gauge_step_,
+                                              gauge_threshold_, min_gap));
   if (!bed_gauges_.empty()) {  // the fill fraction of the bed material's particles alone
     const auto material = fluid.integer("material");
     bed_volume_.resize(fluid.size());

@@ -65,6 +65,8 @@ class ProbesWriter final : public Writer {
     std::string name;
     Vec3 at;
     bool warned = false;  // its dry line was reported
+    bool air = false;     // also records the air under its surface (a surf gauge of the waves section)
+    double elevation = 0.0;  // of the row being written
   };
   struct WallSensor {
     std::string name;

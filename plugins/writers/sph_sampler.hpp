@@ -110,4 +110,28 @@ inline double surface_elevation(const SphSampler& sampler, Vec3 at, int axis, do
   return std::numeric_limits<double>::quiet_NaN();
 }
 
+// Air under the free surface at `surface` (from surface_elevation) along the
+// same line: scanning on down, the length of the first stretch where
+// phi < threshold that has water (phi >= threshold) again below it: an
+// overturning crest, a plunging jet over the water it falls into. Stretches
+// shorter than `min_gap` (the dip of phi between close particles) and air
+// with no water under it before `bottom` count as none: 0.
+inline double air_below(const SphSampler& sampler, Vec3 at, int axis, double surface, double bottom, double step,
+                        double threshold, double min_gap) {
+  const double down = bottom < surface ? -1.0 : 1.0;
+  double air_from = std::numeric_limits<double>::quiet_NaN();
+  for (int k = 1;; ++k) {
+    const double z = surface + down * k * step;
+    if (down * (z - bottom) > 1e-12 * step) return 0.0;
+    at[axis] = z;
+    const bool wet = sampler.fill_fraction(at) >= threshold;
+    if (!wet && std::isnan(air_from)) air_from = z;
+    if (wet && !std::isnan(air_from)) {
+      const double gap = std::abs(z - air_from);
+      if (gap >= min_gap) return gap;
+      air_from = std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+}
+
 }  // namespace talus::writers

@@ -194,6 +194,36 @@ TEST(ProbesWriter, BedGaugesFindOneMaterialsSurfaceAndItsChange) {
   EXPECT_THROW(wrong.check(w), InputError);
 }
 
+// A tongue of water over an air gap (an overturning crest over the water it falls
+// into): a surf gauge under it reads the tongue's top and the air below it; one
+// beside it reads the flat surface and no air. Water to 0.1 m; the tongue from
+// 0.14 to 0.17 m over x < 0.1 m: a 0.04 m gap between the lattice's particle
+// edges (air_below finds it within a few gauge steps of the kernel's reach).
+TEST(ProbesWriter, SurfGaugesFindTheAirUnderAnOverturningCrest) {
+  TempDir dir("probes-air");
+  World w;
+  const double dp = 0.01;
+  w.lo = {0, 0, 0};
+  w.hi = {0.3, 0.3, 0};
+  w.gravity = {0, -9.81, 0};
+  test::fill_lattice(w, 2, w.lo, 30, 10, 1, dp);
+  test::fill_lattice(w, 2, {0, 0.14, 0}, 10, 3, 1, dp);
+  writers::ProbesWriter writer(params_from_json(writers::ProbesWriter::describe(),
+                                                R"({"gauges": [[0.04, 0], [0.25, 0]], "gauge_names": ["S1", "S2"],
+                                                    "integrals": [],
+                                                    "waves": {"offshore": "S2", "surf": ["S1", "S2"]}})",
+                                                2));
+  writer.open(test::context_for(dir.str()), w);
+  writer.write(w);
+  const Csv csv = read_csv(dir.file("scene_probes.csv"));
+  ASSERT_EQ(csv.rows.size(), 1u);
+  EXPECT_NEAR(csv.rows[0][column(csv, "S1_elevation")], 0.17, 0.1 * dp);
+  EXPECT_NEAR(csv.rows[0][column(csv, "S2_elevation")], 0.1, 0.1 * dp);
+  // The gap between the surfaces phi = 0.5 finds: 0.14 - 0.10 = 0.04 m.
+  EXPECT_NEAR(csv.rows[0][column(csv, "S1_air_below")], 0.04, 0.1 * dp);
+  EXPECT_EQ(csv.rows[0][column(csv, "S2_air_below")], 0.0);
+}
+
 // The gauge's elevation of one surface along gravity: the tank of the test
 // above, with gravity along +y or along +x; elevations are coordinates.
 double gauge_elevation(const std::string& name, Vec3 gravity, Vec3 lattice_lo, int nx, int ny, Vec3 hi,

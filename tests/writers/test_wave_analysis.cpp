@@ -92,10 +92,13 @@ TEST(WaveAnalysis, TheWavesSectionReadsTheGaugeRecordsOfAProbesFile) {
   test::TempDir dir("waves-section");
   const Record off = waves(0.11, 0.010, 0.0, 2.0, 40, 10), s1 = waves(0.11, 0.015, 0.0, 2.0, 40, 10),
                s2 = waves(0.11, 0.012, 0.0, 2.0, 40, 10);
-  std::string csv = "# talus probes: scene test\ntime,step,OFF_elevation,S1_elevation,S2_elevation\n";
+  // S2 sees air under its surface once, at t = 6 s (row 120); an earlier one, at 1 s, is before the window.
+  std::string csv =
+      "# talus probes: scene test\ntime,step,OFF_elevation,S1_elevation,S2_elevation,S1_air_below,S2_air_below\n";
   for (std::size_t k = 0; k < off.t.size(); ++k)
     csv += std::to_string(off.t[k]) + "," + std::to_string(k) + "," + std::to_string(off.eta[k]) + "," +
-           std::to_string(s1.eta[k]) + "," + std::to_string(s2.eta[k]) + "\n";
+           std::to_string(s1.eta[k]) + "," + std::to_string(s2.eta[k]) + ",0," +
+           (k == 120 || k == 20 ? "0.02" : "0") + "\n";
   const std::string file = dir.file("probes.csv");
   test::write_file(file, csv + "20.05,40");  // a row cut short by a kill: left out
   const auto params = params_from_json(writers::ProbesWriter::describe(),
@@ -114,6 +117,10 @@ TEST(WaveAnalysis, TheWavesSectionReadsTheGaugeRecordsOfAProbesFile) {
   const double xi = std::tan(20.0 * std::numbers::pi / 180.0) / std::sqrt(0.03 / (9.81 * 4.0 / (2.0 * std::numbers::pi)));
   EXPECT_NEAR(r["iribarren"].number, xi, 0.01 * xi);
   EXPECT_EQ(r["breaker_type"].text, writers::breaker_type(xi));
+  EXPECT_EQ(r["overturned"].text, "yes");
+  EXPECT_EQ(r["overturn_gauge"].text, "S2");
+  EXPECT_NEAR(r["overturn_time"].number, 6.0, 1e-9);
+  EXPECT_EQ(r["observed_type"].text, "plunging");
   // Every result it announces before the run, it gives.
   std::vector<std::string> given;
   for (const auto& [name, value] : r) given.push_back(name);
@@ -132,6 +139,9 @@ TEST(WaveAnalysis, TheWavesSectionReadsTheGaugeRecordsOfAProbesFile) {
   EXPECT_TRUE(std::isnan(f["iribarren"].number));
   EXPECT_TRUE(std::isnan(f["froude"].number));
   EXPECT_EQ(f["breaker_type"].text, "unknown");
+  EXPECT_EQ(f["overturned"].text, "no");  // S1 saw no air
+  EXPECT_EQ(f["observed_type"].text, "not_overturning");
+  EXPECT_TRUE(std::isnan(f["overturn_time"].number));
   // Names that are not its gauges are refused, naming them.
   try {
     writers::BreakerAnalysis(params.object("waves"), {"OFF", "S2"});
