@@ -116,6 +116,23 @@ pid_t spawn(const std::vector<std::string>& argv, const fs::path& log) {
   return pid;
 }
 
+// How far a running variant is: the simulated-time fraction of the last
+// progress line ("t = 1.2 / 4 s (...") its run printed to its log; < 0 if none yet.
+double run_fraction(const fs::path& log) {
+  std::ifstream in(log, std::ios::binary);
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  in.seekg(std::max<std::streamoff>(0, size - 4096));
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string tail = buffer.str();
+  const auto at = tail.rfind("t = ");
+  double done = 0.0, end = 0.0;
+  if (at == std::string::npos || std::sscanf(tail.c_str() + at, "t = %lf / %lf s", &done, &end) != 2 || !(end > 0.0))
+    return -1.0;
+  return std::clamp(done / end, 0.0, 1.0);
+}
+
 std::string talus_executable() {
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
@@ -204,17 +221,47 @@ int run_study(const StudySpec& spec, const StudyOptions& options) {
   std::size_t next = 0, finished = 0;
   double run_seconds = 0.0, study_own_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   int stopped_by = 0;
+  // Between starts and ends, a line every progress_seconds with how far each running variant is.
+  const double progress_seconds = isatty(fileno(stdout)) ? 10.0 : 60.0;
+  Clock::time_point last_progress = Clock::now();
+  // The time left: what the running variants' own progress says is left of them,
+  // and for each waiting one the mean of the finished (or else of the running's projections).
+  auto time_left = [&]() {
+    const Clock::time_point now = Clock::now();
+    double left = 0.0, projected = 0.0;
+    std::size_t projections = 0;
+    for (const auto& [child, run] : running) {
+      const double elapsed = std::chrono::duration<double>(now - run.second).count();
+      const double fraction = run_fraction(folders[run.first].dir / "run.log");
+      if (!(fraction > 0.0)) return -1.0;
+      left += elapsed * (1.0 - fraction) / fraction;
+      projected += elapsed / fraction;
+      ++projections;
+    }
+    const std::size_t waiting = queue.size() - next;
+    const double mean = finished ? run_seconds / static_cast<double>(finished)
+                        : projections ? projected / static_cast<double>(projections)
+                                      : -1.0;
+    if (waiting && mean < 0.0) return -1.0;
+    return (left + static_cast<double>(waiting) * std::max(mean, 0.0)) / jobs;
+  };
   auto print_progress = [&](const std::string& what) {
     if (options.quiet) return;
-    const std::size_t left = queue.size() - finished - running.size();
-    std::string eta;
-    if (finished > 0 && left + running.size() > 0) {
-      const double mean = run_seconds / static_cast<double>(finished);
-      eta = ", about " + clock_text(mean * static_cast<double>(left + running.size()) / jobs) + " left";
-    }
+    const double left = running.empty() && next == queue.size() ? -1.0 : time_left();
     std::printf("talus study: %s; %zu of %zu done, %zu running, %zu waiting%s\n", what.c_str(),
-                finished + (variants.size() - queue.size()), variants.size(), running.size(), left, eta.c_str());
+                finished + (variants.size() - queue.size()), variants.size(), running.size(), queue.size() - next,
+                left >= 0.0 ? (", about " + clock_text(left) + " left").c_str() : "");
     std::fflush(stdout);
+    last_progress = Clock::now();
+  };
+  auto print_running = [&]() {
+    std::string list;
+    for (const auto& [child, run] : running) {
+      const double fraction = run_fraction(folders[run.first].dir / "run.log");
+      list += (list.empty() ? "" : ", ") + variants[run.first].id +
+              (fraction >= 0.0 ? " " + std::to_string(static_cast<int>(100.0 * fraction)) + " %" : " (no progress line yet)");
+    }
+    print_progress("running " + list);
   };
 
   while ((!stopped_by && next < queue.size()) || !running.empty()) {
@@ -227,7 +274,7 @@ int run_study(const StudySpec& spec, const StudyOptions& options) {
       if (!fs::exists(f.scene_file)) write_file(f.scene_file, checked[k].scene_text);
       std::vector<std::string> argv = {exe, "run", f.scene_file.string(), "--out", f.dir.string(),
                                        "--summary", (f.dir / "summary.json").string(),
-                                       "--threads", std::to_string(threads), "--quiet"};
+                                       "--threads", std::to_string(threads)};  // progress lines in run.log
       if (f.state == State::resumable) {
         argv.push_back("--restart");
         argv.push_back(f.checkpoint);
@@ -245,6 +292,11 @@ int run_study(const StudySpec& spec, const StudyOptions& options) {
       if (!stopped_by && stop_signals.caught()) {
         stopped_by = stop_signals.caught();
         for (const auto& [child, what] : running) kill(child, stopped_by);  // each writes its checkpoint
+      }
+      if (!stopped_by && !running.empty() &&
+          std::chrono::duration<double>(Clock::now() - last_progress).count() >= progress_seconds) {
+        print_running();
+        last_progress = Clock::now();
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
       continue;
