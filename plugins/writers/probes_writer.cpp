@@ -1,6 +1,7 @@
 #include "probes_writer.hpp"
 
 #include <algorithm>
+#include <numeric>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -103,6 +104,9 @@ ParamSet ProbesWriter::describe() {
       .doc("at the end of the run, the waves the gauges recorded: heights and period (zero up-crossing), "
            "Iribarren and Froude numbers, breaker type; in the run summary (results/probes) and FILE_results.json "
            "beside the probes file");
+  p.boolean("material_masses")
+      .default_value(false)
+      .doc("the fluid mass of each material, mass_NAME (kg; per metre of depth in 2D): each phase's conservation");
   p.boolean("block_forces")
       .default_value(false)
       .doc("external force on every block (the coupling force of the last step): NAME_fx, NAME_fy[, NAME_fz]");
@@ -172,6 +176,7 @@ ProbesWriter::ProbesWriter(const ParamValues& params) : params_(params) {
   gauge_threshold_ = params.real("gauge_threshold");
   if (params.has("gauge_step")) gauge_step_ = params.real("gauge_step");
   block_forces_ = params.boolean("block_forces");
+  material_masses_ = params.boolean("material_masses");
   if (params.has("waves")) {
     std::vector<std::string> gauge_names;
     for (const auto& g : gauges_) gauge_names.push_back(g.name);
@@ -256,6 +261,14 @@ void ProbesWriter::resolve_columns(const World& world) {
   for (const auto& g : bed_gauges_) {
     names_.push_back(g.name + "_bed");
     units_.push_back("m");
+  }
+  if (material_masses_) {
+    if (!world.fluid.has("mass"))
+      params_.fail("material_masses", "needs the particle field 'mass' (an SPH stage)");
+    for (const auto& m : world.materials) {
+      names_.push_back("mass_" + m.name);
+      units_.push_back("kg");
+    }
   }
   for (auto q : integrals_) {
     names_.emplace_back(kIntegralNames[static_cast<int>(q)]);
@@ -679,6 +692,18 @@ void ProbesWriter::write(const World& world) {
   }
   for (auto& g : bed_gauges_)
     put(surface_elevation(bed_sampler_, g.at, vertical_, bottom, top, gauge_step_, gauge_threshold_));
+  if (material_masses_) {  // summed in particle id order: the re-sort does not change the sum's rounding
+    std::vector<double> sums(world.materials.size(), 0.0);
+    const auto m = fluid.scalar("mass");
+    const auto material = fluid.integer("material");
+    const auto id = fluid.ids();
+    std::vector<Index> by_id(fluid.size());
+    std::iota(by_id.begin(), by_id.end(), Index{0});
+    std::sort(by_id.begin(), by_id.end(), [&](Index a, Index b) { return id[a] < id[b]; });
+    for (Index i : by_id)
+      if (material[i] >= 0 && static_cast<std::size_t>(material[i]) < sums.size()) sums[material[i]] += m[i];
+    for (double s : sums) put(s);
+  }
   for (auto q : integrals_) put(integral(q, world));
   for (int body : wall_bodies_) {
     const Vec3 f = wall_force(body, world);

@@ -110,6 +110,7 @@ class ProbesWriter final : public Writer {
   bool bed_change_ = true;  // two bed gauges or more: the eroded and deposited cross-section
   std::vector<Quantity> integrals_;
   bool block_forces_ = false;
+  bool material_masses_ = false;
   std::vector<int> wall_bodies_;  // scene body indices
   std::vector<WallSensor> sensors_;
   double sensor_size_ = 0.0;      // m; 0: the wall particle spacing

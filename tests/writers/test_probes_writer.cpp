@@ -166,7 +166,8 @@ TEST(ProbesWriter, BedGaugesFindOneMaterialsSurfaceAndItsChange) {
   writers::ProbesWriter writer(params_from_json(writers::ProbesWriter::describe(),
                                                 R"({"gauges": [[0.3, 0]], "gauge_names": ["W"],
                                                     "bed_gauges": [[0.05, 0], [0.15, 0], [0.25, 0], [0.35, 0]],
-                                                    "bed_material": "sand", "integrals": []})",
+                                                    "bed_material": "sand", "integrals": [],
+                                                    "material_masses": true})",
                                                 2));
   EXPECT_EQ(writer.result_names(), (std::vector<std::string>{"bed_eroded_area", "bed_deposited_area"}));
   writer.open(test::context_for(dir.str()), w);
@@ -183,6 +184,11 @@ TEST(ProbesWriter, BedGaugesFindOneMaterialsSurfaceAndItsChange) {
   for (const char* b : {"B1_bed", "B2_bed", "B3_bed", "B4_bed"}) EXPECT_NEAR(csv.rows[0][column(csv, b)], 0.05, 0.1 * dp);
   EXPECT_NEAR(csv.rows[1][column(csv, "B1_bed")], 0.03, 0.1 * dp);
   EXPECT_NEAR(csv.rows[1][column(csv, "B4_bed")], 0.05, 0.1 * dp);
+  // Each phase's mass, the same on both rows (the sand moved, none was made or lost).
+  const double sand = 0.4 * 0.05 * 1000.0, water = 0.4 * 0.05 * 1000.0;
+  EXPECT_NEAR(csv.rows[0][column(csv, "mass_sand")], sand, 1e-9 * sand);
+  EXPECT_NEAR(csv.rows[0][column(csv, "mass_water")], water, 1e-9 * water);
+  EXPECT_EQ(csv.rows[1][column(csv, "mass_sand")], csv.rows[0][column(csv, "mass_sand")]);
   std::map<std::string, double> r;
   for (const auto& result : writer.results()) r[result.name] = result.number;
   EXPECT_NEAR(r["bed_eroded_area"], 0.003, 0.05 * dp * 0.1);

@@ -44,15 +44,6 @@ std::string read_file(const fs::path& path) {
   return buffer.str();
 }
 
-void write_file(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::trunc);
-    out << text;
-    if (!out) throw RunError("error: cannot write " + tmp.string() + ": " + std::strerror(errno));
-  }
-  fs::rename(tmp, path);
-}
 
 // What a variant's folder says of it.
 enum class State { fresh, done, failed, resumable };
@@ -271,7 +262,7 @@ int run_study(const StudySpec& spec, const StudyOptions& options) {
       const Clock::time_point launched = Clock::now();
       fs::create_directories(f.dir);
       fs::remove(f.dir / "failed.txt");
-      if (!fs::exists(f.scene_file)) write_file(f.scene_file, checked[k].scene_text);
+      if (!fs::exists(f.scene_file)) write_atomically(f.scene_file.string(), checked[k].scene_text);
       std::vector<std::string> argv = {exe, "run", f.scene_file.string(), "--out", f.dir.string(),
                                        "--summary", (f.dir / "summary.json").string(),
                                        "--threads", std::to_string(threads)};  // progress lines in run.log
@@ -324,7 +315,7 @@ int run_study(const StudySpec& spec, const StudyOptions& options) {
     } else {
       o.status = "failed";
       o.error = error_of(f.dir / "run.log", status);
-      write_file(f.dir / "failed.txt", o.error);
+      write_atomically((f.dir / "failed.txt").string(), o.error);
       what = variants[k].id + " FAILED: " + o.error;
       ++finished;
       run_seconds += seconds;

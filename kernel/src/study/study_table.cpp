@@ -30,6 +30,9 @@ std::string csv_cell(const std::string& text) {
   return quoted + "\"";
 }
 
+
+}  // namespace
+
 void write_atomically(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".tmp";
   {
@@ -39,8 +42,6 @@ void write_atomically(const std::string& path, const std::string& text) {
   }
   fs::rename(tmp, path);
 }
-
-}  // namespace
 
 double reduce_series(const std::string& csv_path, const Measure& m) {
   const auto series = read_series(csv_path, {"time", m.series});

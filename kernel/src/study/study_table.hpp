@@ -29,6 +29,9 @@ TALUS_API std::vector<nlohmann::json> read_measures(const StudySpec& spec, const
 // throws RunError naming the file when the column or the rows are missing.
 TALUS_API double reduce_series(const std::string& csv_path, const Measure& measure);
 
+// Writes `text` to a temporary name and renames it to `path`; throws RunError.
+TALUS_API void write_atomically(const std::string& path, const std::string& text);
+
 // Writes DIR/table.csv and DIR/table.json (through temporary names).
 TALUS_API void write_table(const StudySpec& spec, const std::vector<Variant>& variants,
                            const std::vector<Outcome>& outcomes, const std::string& directory);
