@@ -21,12 +21,13 @@ ParamSet BreakerAnalysis::describe() {
   return w;
 }
 
-BreakerAnalysis::BreakerAnalysis(const ParamValues& params, const std::vector<std::string>& gauges)
+BreakerAnalysis::BreakerAnalysis(const ParamValues& params, const std::vector<std::string>& gauges, bool runup)
     : offshore_(params.string("offshore")),
       surf_(params.strings("surf")),
       slope_(params.has("slope") ? params.real("slope") : nan_),
       water_depth_(params.has("water_depth") ? params.real("water_depth") : nan_),
-      from_(params.real("from")) {
+      from_(params.real("from")),
+      runup_(runup) {
   std::string list;
   for (const auto& g : gauges) list += (list.empty() ? "" : ", ") + g;
   auto known = [&](const std::string& name, const char* key) {
@@ -44,6 +45,10 @@ std::vector<std::string> BreakerAnalysis::result_names() const {
                                     "waves",           "wavelength",    "iribarren",     "froude",
                                     "breaker_type",    "overturned",    "overturn_gauge", "overturn_time",
                                     "observed_type"};
+  if (runup_) {
+    names.push_back("runup_max");
+    names.push_back("runup_mean");
+  }
   for (const auto& g : surf_) {
     names.push_back(g + "_height");
     names.push_back(g + "_period");
@@ -55,6 +60,7 @@ std::vector<WriterResult> BreakerAnalysis::analyse(const std::string& probes_fil
   std::vector<std::string> columns = {"time", offshore_ + "_elevation"};
   for (const auto& s : surf_) columns.push_back(s + "_elevation");
   for (const auto& s : surf_) columns.push_back(s + "_air_below");
+  if (runup_) columns.push_back("runup_elevation");
   const auto series = read_series(probes_file, columns);
   const WaveStatistics offshore = zero_up_crossing(series[0], series[1], from_);
   std::vector<WriterResult> results;
@@ -96,6 +102,24 @@ std::vector<WriterResult> BreakerAnalysis::analyse(const std::string& probes_fil
   results.push_back({"overturn_gauge", 0.0, overturned ? overturn_gauge : "none"});
   results.push_back({"overturn_time", overturn_time, {}});
   results.push_back({"observed_type", 0.0, overturned ? "plunging" : "not_overturning"});
+  if (runup_) {  // above the offshore gauge's mean level, the highest in the window and the mean of each wave's highest
+    const auto& t = series[0];
+    const auto& r = series.back();
+    double highest = std::numeric_limits<double>::quiet_NaN(), sum = 0.0;
+    std::size_t waves = 0;
+    for (std::size_t w = 0; w + 1 < offshore.crossings.size(); ++w) {
+      double top = -std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < t.size(); ++k)
+        if (t[k] >= offshore.crossings[w] && t[k] < offshore.crossings[w + 1] && std::isfinite(r[k])) top = std::max(top, r[k]);
+      if (!std::isfinite(top)) continue;
+      sum += top - offshore.mean_level;
+      ++waves;
+    }
+    for (std::size_t k = 0; k < t.size(); ++k)
+      if (t[k] >= from_ && std::isfinite(r[k]) && !(r[k] - offshore.mean_level <= highest)) highest = r[k] - offshore.mean_level;
+    results.push_back({"runup_max", highest, {}});
+    results.push_back({"runup_mean", waves ? sum / static_cast<double>(waves) : std::numeric_limits<double>::quiet_NaN(), {}});
+  }
   for (auto& r : per_gauge) results.push_back(std::move(r));
   return results;
 }

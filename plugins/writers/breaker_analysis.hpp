@@ -20,7 +20,8 @@ class BreakerAnalysis {
  public:
   static ParamSet describe();
   // `gauges`: the probes writer's gauge names, which the section must name.
-  BreakerAnalysis(const ParamValues& params, const std::vector<std::string>& gauges);
+  // `runup`: the probes writer records runup_elevation (a runup_line).
+  BreakerAnalysis(const ParamValues& params, const std::vector<std::string>& gauges, bool runup = false);
 
   std::vector<std::string> result_names() const;
   // The gauges whose air under the surface the probes writer records (NAME_air_below).
@@ -33,6 +34,7 @@ class BreakerAnalysis {
   std::vector<std::string> surf_;
   static constexpr double nan_ = std::numeric_limits<double>::quiet_NaN();
   double slope_ = nan_, water_depth_ = nan_, from_ = 0.0;  // NaN: not given
+  bool runup_ = false;
 };
 
 }  // namespace talus::writers

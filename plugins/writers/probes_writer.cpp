@@ -65,6 +65,12 @@ ParamSet ProbesWriter::describe() {
       "cross-section between the first and the last row (results bed_eroded_area, bed_deposited_area)");
   p.string_list("bed_gauge_names").optional().doc("column prefixes of the bed gauges; default B1, B2, ...");
   p.string("bed_material").optional().doc("the material whose surface the bed gauges find");
+  p.vector_list("runup_line").optional().unit("m").doc(
+      "run-up: two points, the line up a slope (from below the still water to above the highest run-up), half a "
+      "particle spacing above the slope's surface; column runup_elevation, the vertical coordinate of its highest "
+      "wet point (NaN when dry), scanning down from its upper end");
+  p.string("runup_material").optional().doc(
+      "run-up: count only this material's particles as wet (the water, over a bank of another material)");
   p.real("gauge_step")
       .unit("m")
       .greater_than(0.0)
@@ -147,6 +153,13 @@ ProbesWriter::ProbesWriter(const ParamValues& params) : params_(params) {
   if (!bed_gauges_.empty() && !params.has("bed_material"))
     params.fail("bed_gauges", "bed gauges need \"bed_material\": the material whose surface they find");
   if (bed_gauges_.size() == 1) bed_change_ = false;
+  if (given_points(params, "runup_line")) {
+    const auto line = params.vectors("runup_line");
+    if (line.size() != 2) params.fail("runup_line", "give two points, the line's ends");
+    runup_line_ = {line[0], line[1]};
+  } else if (params.has("runup_material")) {
+    params.fail("runup_material", "given but no runup_line");
+  }
   if (given_points(params, "wall_sensors")) {
     const auto at = params.vectors("wall_sensors");
     const auto normals = given_points(params, "wall_sensor_normals") ? params.vectors("wall_sensor_normals")
@@ -180,7 +193,7 @@ ProbesWriter::ProbesWriter(const ParamValues& params) : params_(params) {
   if (params.has("waves")) {
     std::vector<std::string> gauge_names;
     for (const auto& g : gauges_) gauge_names.push_back(g.name);
-    waves_.emplace(params.object("waves"), gauge_names);
+    waves_.emplace(params.object("waves"), gauge_names, runup_line_.has_value());
     for (auto& g : gauges_)
       g.air = std::find(waves_->surf_gauges().begin(), waves_->surf_gauges().end(), g.name) != waves_->surf_gauges().end();
   }
@@ -260,6 +273,10 @@ void ProbesWriter::resolve_columns(const World& world) {
     }
   for (const auto& g : bed_gauges_) {
     names_.push_back(g.name + "_bed");
+    units_.push_back("m");
+  }
+  if (runup_line_) {
+    names_.push_back("runup_elevation");
     units_.push_back("m");
   }
   if (material_masses_) {
@@ -433,10 +450,12 @@ void ProbesWriter::prepare(const World& world) {
         params_.fail(key, std::string("needs the field '") + f +
                               "' on fluid and wall particles (an SPH stage with wall particles)");
   }
-  if (!points_.empty() || !gauges_.empty() || !bed_gauges_.empty() || !wall_bodies_.empty() || !sensors_.empty()) {
+  if (!points_.empty() || !gauges_.empty() || !bed_gauges_.empty() || runup_line_ || !wall_bodies_.empty() ||
+      !sensors_.empty()) {
     const char* key = !points_.empty() ? "points"
                       : !gauges_.empty() ? "gauges"
                       : !bed_gauges_.empty() ? "bed_gauges"
+                      : runup_line_ ? "runup_line"
                       : !wall_bodies_.empty() ? "wall_forces"
                                               : "wall_sensors";
     if (!(world.kernel.support_radius() > 0.0))
@@ -455,6 +474,16 @@ void ProbesWriter::prepare(const World& world) {
     for (const auto& g : bed_gauges_)
       if (!inside(g.at, true))
         params_.fail("bed_gauges", g.name + " at " + point_text(g.at, world.dim) + " is outside the domain");
+    if (runup_line_)
+      for (const Vec3& end : *runup_line_)
+        if (!inside(end, false))
+          params_.fail("runup_line", "the end " + point_text(end, world.dim) + " is outside the domain");
+    if (runup_line_ && params_.has("runup_material")) {
+      runup_material_ = world.find_material(params_.string("runup_material"));
+      if (runup_material_ < 0)
+        params_.fail("runup_material", "'" + params_.string("runup_material") + "' is not a fluid material of this scene");
+      runup_sampler_.configure(world.dim, world.lo, world.hi, world.periodic, world.kernel);
+    }
     if (!bed_gauges_.empty()) {
       bed_material_ = world.find_material(params_.string("bed_material"));
       if (bed_material_ < 0 || !world.fluid.has("material"))
@@ -626,7 +655,8 @@ void ProbesWriter::write(const World& world) {
     row_ += format_real(v);
   };
 
-  if (!points_.empty() || !gauges_.empty() || !bed_gauges_.empty() || !wall_bodies_.empty() || !sensors_.empty()) {
+  if (!points_.empty() || !gauges_.empty() || !bed_gauges_.empty() || runup_line_ || !wall_bodies_.empty() ||
+      !sensors_.empty()) {
     const std::size_t n = fluid.size();
     volume_.resize(n);
     if (fluid.has("mass") && fluid.has("density")) {
@@ -692,6 +722,18 @@ void ProbesWriter::write(const World& world) {
   }
   for (auto& g : bed_gauges_)
     put(surface_elevation(bed_sampler_, g.at, vertical_, bottom, top, gauge_step_, gauge_threshold_));
+  if (runup_line_) {
+    const SphSampler* wet = &sampler_;
+    if (runup_material_ >= 0) {
+      const auto material = fluid.integer("material");
+      runup_volume_.resize(fluid.size());
+#pragma omp parallel for
+      for (std::size_t i = 0; i < fluid.size(); ++i) runup_volume_[i] = material[i] == runup_material_ ? volume_[i] : 0.0;
+      runup_sampler_.bind(fluid.position(), runup_volume_);
+      wet = &runup_sampler_;
+    }
+    put(highest_wet_point(*wet, (*runup_line_)[0], (*runup_line_)[1], vertical_, up_, gauge_step_, gauge_threshold_));
+  }
   if (material_masses_) {  // summed in particle id order: the re-sort does not change the sum's rounding
     std::vector<double> sums(world.materials.size(), 0.0);
     const auto m = fluid.scalar("mass");

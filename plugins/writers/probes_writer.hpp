@@ -21,6 +21,7 @@
 // always ends with a complete row. Layout: docs/output-formats.md.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -107,6 +108,8 @@ class ProbesWriter final : public Writer {
   std::vector<std::string> point_names_;
   std::vector<Gauge> gauges_, bed_gauges_;
   int bed_material_ = -1;
+  std::optional<std::array<Vec3, 2>> runup_line_;
+  int runup_material_ = -1;  // -1: every fluid particle is wet
   bool bed_change_ = true;  // two bed gauges or more: the eroded and deposited cross-section
   std::vector<Quantity> integrals_;
   bool block_forces_ = false;
@@ -126,8 +129,8 @@ class ProbesWriter final : public Writer {
   std::vector<WriterResult> results_;
   std::string path_, results_path_;
   LineFile file_;
-  SphSampler sampler_, bed_sampler_;
-  std::vector<double> volume_, bed_volume_;
+  SphSampler sampler_, bed_sampler_, runup_sampler_;
+  std::vector<double> volume_, bed_volume_, runup_volume_;
   std::vector<Neighbour> neighbours_;
   std::string row_;
   bool have_last_step_ = false;

@@ -134,4 +134,29 @@ inline double air_below(const SphSampler& sampler, Vec3 at, int axis, double sur
   }
 }
 
+// The vertical coordinate of the highest wet point (phi >= threshold) on the
+// segment a-b, scanning in steps of `step` from its upper end (along `up` on
+// axis `vertical`), placed between the last dry and the first wet sample by
+// linear interpolation of phi; NaN when the whole segment is dry. The run-up
+// on a slope.
+inline double highest_wet_point(const SphSampler& sampler, Vec3 a, Vec3 b, int vertical, double up, double step,
+                                double threshold) {
+  if (up * (a[vertical] - b[vertical]) > 0.0) std::swap(a, b);  // b is the upper end
+  const Vec3 d = a - b;
+  const double length = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+  const int samples = std::max(1, static_cast<int>(std::ceil(length / step)));
+  double above_phi = 0.0;
+  for (int k = 0; k <= samples; ++k) {
+    const Vec3 at = b + d * (static_cast<double>(k) / samples);
+    const double phi = sampler.fill_fraction(at);
+    if (phi >= threshold) {  // placed by linear interpolation of phi from the dry sample before, as above
+      if (k == 0) return at[vertical];
+      const double back = (phi - threshold) / (phi - above_phi) / samples;
+      return at[vertical] - d[vertical] * back;
+    }
+    above_phi = phi;
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
 }  // namespace talus::writers

@@ -16,7 +16,7 @@ WaveStatistics zero_up_crossing(std::span<const double> time, std::span<const do
       t.push_back(time[k]);
       eta.push_back(elevation[k]);
     }
-  WaveStatistics s{0, nan, nan, nan, nan};
+  WaveStatistics s{0, nan, nan, nan, nan, {}};
   if (eta.size() < 3) return s;
   double sum = 0.0;
   for (double e : eta) sum += e;
@@ -30,6 +30,7 @@ WaveStatistics zero_up_crossing(std::span<const double> time, std::span<const do
     const double a = eta[k] - s.mean_level, b = eta[k + 1] - s.mean_level;
     if (!(a < 0.0 && b >= 0.0)) continue;
     const double crossing = t[k] + (t[k + 1] - t[k]) * (-a) / (b - a);
+    s.crossings.push_back(crossing);
     if (std::isfinite(last_crossing)) {
       const double height = crest - trough;
       height_sum += height;

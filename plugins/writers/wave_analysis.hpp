@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace talus::writers {
 
@@ -28,6 +29,7 @@ struct WaveStatistics {
   double height = 0.0;      // mean of the waves' heights
   double max_height = 0.0;  // the highest wave
   double period = 0.0;      // mean of the waves' periods
+  std::vector<double> crossings;  // the up-crossing times: wave k runs from crossings[k] to crossings[k + 1]
 };
 
 // Over the samples with time >= from; non-finite elevations (a dry gauge) are

@@ -230,6 +230,34 @@ TEST(ProbesWriter, SurfGaugesFindTheAirUnderAnOverturningCrest) {
   EXPECT_EQ(csv.rows[0][column(csv, "S2_air_below")], 0.0);
 }
 
+// The run-up line's highest wet point: a line rising through a flat surface at
+// 0.1 m finds it within a gauge step; counting only the "sand" below, 0.05 m.
+TEST(ProbesWriter, TheRunupLineFindsItsHighestWetPoint) {
+  TempDir dir("probes-runup");
+  World w;
+  const double dp = 0.01;
+  w.lo = {0, 0, 0};
+  w.hi = {0.4, 0.3, 0};
+  w.gravity = {0, -9.81, 0};
+  w.materials = {{"water"}, {"sand"}};
+  test::fill_lattice(w, 2, w.lo, 40, 10, 1, dp);
+  auto x = w.fluid.position();
+  auto material = w.fluid.material();
+  for (std::size_t i = 0; i < w.fluid.size(); ++i) material[i] = x[i].y < 0.05 ? 1 : 0;
+  for (const char* only : {"", "sand"}) {
+    const std::string extra = *only ? std::string(R"(, "runup_material": ")") + only + "\"" : "";
+    writers::ProbesWriter writer(params_from_json(
+        writers::ProbesWriter::describe(),
+        R"({"runup_line": [[0.05, 0.02], [0.35, 0.22]], "integrals": [])" + extra + "}", 2));
+    writer.open(test::context_for(dir.str()), w);
+    writer.write(w);
+    writer.close(w);
+    const Csv csv = read_csv(dir.file("scene_probes.csv"));
+    ASSERT_EQ(csv.rows.size(), 1u);
+    EXPECT_NEAR(csv.rows[0][column(csv, "runup_elevation")], *only ? 0.05 : 0.1, 0.1 * dp) << only;
+  }
+}
+
 // The gauge's elevation of one surface along gravity: the tank of the test
 // above, with gravity along +y or along +x; elevations are coordinates.
 double gauge_elevation(const std::string& name, Vec3 gravity, Vec3 lattice_lo, int nx, int ny, Vec3 hi,
