@@ -332,6 +332,9 @@ TEST(StudyPieces, GridPutsTheValuesAtThePointersLastAxisFastest) {
   EXPECT_EQ(grid[4].id, "005");
   EXPECT_EQ(grid[4].scene, nlohmann::json::parse(R"({"x": [2, 9], "y": "q", "z": true})"));
   EXPECT_EQ(grid[4].label(spec), "a=2, b=q");
+  EXPECT_EQ(talus::study::short_text(nlohmann::json::parse(R"([1, 2, 3])")), "[1,2,3]");
+  EXPECT_EQ(talus::study::short_text(nlohmann::json(std::vector<int>(30, 7))), "[30 items]");
+  EXPECT_EQ(talus::study::short_text(nlohmann::json(std::string(50, 'x'))), std::string(37, 'x') + "...");
   spec.zip = true;
   spec.axes[1].values.pop_back();
   const auto zip = talus::study::expand_variants(spec, base);

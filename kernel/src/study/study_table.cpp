@@ -132,7 +132,7 @@ void write_table(const StudySpec& spec, const std::vector<Variant>& variants, co
     csv += v.id;
     for (std::size_t a = 0; a < spec.axes.size(); ++a) {
       row[spec.axes[a].name] = v.values[a];
-      csv += "," + csv_cell(cell_text(v.values[a]));
+      csv += "," + csv_cell(short_text(v.values[a]));
     }
     csv += "," + o.status;
     for (std::size_t m = 0; m < spec.measures.size(); ++m) {

@@ -37,10 +37,18 @@ std::string cell_text(const nlohmann::json& value) {
   return value.dump();
 }
 
+std::string short_text(const nlohmann::json& value) {
+  std::string text = cell_text(value);
+  if (text.size() <= 40) return text;
+  if (value.is_array()) return "[" + std::to_string(value.size()) + " items]";
+  if (value.is_object()) return "{" + std::to_string(value.size()) + " keys}";
+  return text.substr(0, 37) + "...";
+}
+
 std::string Variant::label(const StudySpec& spec) const {
   std::string text;
   for (std::size_t a = 0; a < values.size() && a < spec.axes.size(); ++a)
-    text += (a ? ", " : "") + spec.axes[a].name + "=" + cell_text(values[a]);
+    text += (a ? ", " : "") + spec.axes[a].name + "=" + short_text(values[a]);
   return text;
 }
 

@@ -29,5 +29,8 @@ TALUS_API std::vector<Variant> expand_variants(const StudySpec& spec, const nloh
 
 // The text of a JSON value as a table cell: strings bare, numbers shortest.
 TALUS_API std::string cell_text(const nlohmann::json& value);
+// The same, at most 40 characters: a longer array or object as "[31 items]" or
+// "{4 keys}", a longer text cut (labels, the CSV table; table.json has it whole).
+TALUS_API std::string short_text(const nlohmann::json& value);
 
 }  // namespace talus::study
