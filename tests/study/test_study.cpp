@@ -14,6 +14,7 @@
 
 #include "process.hpp"
 #include "run_summary.hpp"
+#include "study/study_run.hpp"
 #include "study/study_spec.hpp"
 #include "study/study_table.hpp"
 #include "study/variants.hpp"
@@ -376,6 +377,18 @@ TEST(StudyPieces, MeasuresComeFromTheSummaryAndTheSeriesFiles) {
   EXPECT_NE(problems.find("xi: no value (/results/probes/xi is null in the summary)"), std::string::npos) << problems;
   EXPECT_NE(problems.find("gone: no series file of the run has a column 'G2_elevation'"), std::string::npos)
       << problems;
+}
+
+// A running variant's progress from its log: the last progress line, not the
+// "dt = " inside it nor the "to t = 6 s" of the opening line.
+TEST(StudyPieces, ARunsProgressIsItsLastProgressLine) {
+  const std::string log = std::string(TALUS_BINARY_DIR) + "/tests/study_progress.log";
+  write_file(log, "talus: running a.json: 732 fluid particles, to t = 6 s; output in out\n");
+  EXPECT_LT(talus::study::run_fraction(log), 0.0);
+  write_file(log, read_file(log) + "t = 1.5 / 6 s ( 25.0%)  dt = 0.000187 s  step 100\n"
+                                   "t = 3 / 6 s ( 50.0%)  dt = 0.000188 s  step 200  ETA 2:00\n");
+  EXPECT_DOUBLE_EQ(talus::study::run_fraction(log), 0.5);
+  EXPECT_LT(talus::study::run_fraction(log + ".none"), 0.0);
 }
 
 // The keys a measure may name are the keys the summary has.

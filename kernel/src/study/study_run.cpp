@@ -107,23 +107,6 @@ pid_t spawn(const std::vector<std::string>& argv, const fs::path& log) {
   return pid;
 }
 
-// How far a running variant is: the simulated-time fraction of the last
-// progress line ("t = 1.2 / 4 s (...") its run printed to its log; < 0 if none yet.
-double run_fraction(const fs::path& log) {
-  std::ifstream in(log, std::ios::binary);
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  in.seekg(std::max<std::streamoff>(0, size - 4096));
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string tail = buffer.str();
-  const auto at = tail.rfind("t = ");
-  double done = 0.0, end = 0.0;
-  if (at == std::string::npos || std::sscanf(tail.c_str() + at, "t = %lf / %lf s", &done, &end) != 2 || !(end > 0.0))
-    return -1.0;
-  return std::clamp(done / end, 0.0, 1.0);
-}
-
 std::string talus_executable() {
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
@@ -132,6 +115,24 @@ std::string talus_executable() {
 }
 
 }  // namespace
+
+// How far a running variant is: the simulated-time fraction of the last
+// progress line ("t = 1.2 / 4 s (...") its run printed to its log; < 0 if none yet.
+double run_fraction(const std::string& log) {
+  std::ifstream in(log, std::ios::binary);
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  in.seekg(std::max<std::streamoff>(0, size - 4096));
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string tail = buffer.str();
+  const auto line = tail.rfind("\nt = ");  // a line's start: "dt = " holds "t = " too
+  double done = 0.0, end = 0.0;
+  if (line == std::string::npos || std::sscanf(tail.c_str() + line + 1, "t = %lf / %lf s", &done, &end) != 2 ||
+      !(end > 0.0))
+    return -1.0;
+  return std::clamp(done / end, 0.0, 1.0);
+}
 
 int run_study(const StudySpec& spec, const StudyOptions& options) {
   const Clock::time_point start = Clock::now();
@@ -223,7 +224,7 @@ int run_study(const StudySpec& spec, const StudyOptions& options) {
     std::size_t projections = 0;
     for (const auto& [child, run] : running) {
       const double elapsed = std::chrono::duration<double>(now - run.second).count();
-      const double fraction = run_fraction(folders[run.first].dir / "run.log");
+      const double fraction = run_fraction((folders[run.first].dir / "run.log").string());
       if (!(fraction > 0.0)) return -1.0;
       left += elapsed * (1.0 - fraction) / fraction;
       projected += elapsed / fraction;
@@ -248,7 +249,7 @@ int run_study(const StudySpec& spec, const StudyOptions& options) {
   auto print_running = [&]() {
     std::string list;
     for (const auto& [child, run] : running) {
-      const double fraction = run_fraction(folders[run.first].dir / "run.log");
+      const double fraction = run_fraction((folders[run.first].dir / "run.log").string());
       list += (list.empty() ? "" : ", ") + variants[run.first].id +
               (fraction >= 0.0 ? " " + std::to_string(static_cast<int>(100.0 * fraction)) + " %" : " (no progress line yet)");
     }

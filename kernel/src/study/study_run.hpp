@@ -21,6 +21,10 @@ struct StudyOptions {
   bool quiet = false;
 };
 
+// How far a run is: the simulated-time fraction of the last progress line
+// ("t = 1.2 / 4 s (...") in its log; < 0 if it has none yet.
+TALUS_API double run_fraction(const std::string& log);
+
 // Returns the exit code: 0 every variant done, 1 some failed (the table says
 // which and why), 130/143 stopped by a signal (the study resumes), and throws
 // InputError for a study or variant that cannot run (nothing written).
