@@ -146,6 +146,18 @@ TEST(ProbesWriter, WaveGaugeFindsAFlatFreeSurface) {
   EXPECT_NEAR(csv.rows[0][column(csv, "left_elevation")], depth, 0.1 * dp);
 }
 
+// A 2D tank 0.4 m long of water to 0.1 m over sand to 0.05 m (materials water, sand).
+void sand_under_water(World& w, double dp) {
+  w.lo = {0, 0, 0};
+  w.hi = {0.4, 0.3, 0};
+  w.gravity = {0, -9.81, 0};
+  w.materials = {{"water"}, {"sand"}};
+  test::fill_lattice(w, 2, w.lo, 40, 10, 1, dp);
+  const auto x = w.fluid.position();
+  auto material = w.fluid.material();
+  for (std::size_t i = 0; i < w.fluid.size(); ++i) material[i] = x[i].y < 0.05 ? 1 : 0;
+}
+
 // Bed gauges find the top of one material under another, and the bed's change
 // between the first and the last row: sand 0.05 m deep under water to 0.1 m; the
 // sand left of x = 0.2 sinks 0.02 m. Gauges 0.1 m apart (beyond the kernel's
@@ -155,14 +167,9 @@ TEST(ProbesWriter, BedGaugesFindOneMaterialsSurfaceAndItsChange) {
   TempDir dir("probes-bed");
   World w;
   const double dp = 0.01;
-  w.lo = {0, 0, 0};
-  w.hi = {0.4, 0.3, 0};
-  w.gravity = {0, -9.81, 0};
-  w.materials = {{"water"}, {"sand"}};
-  test::fill_lattice(w, 2, w.lo, 40, 10, 1, dp);
+  sand_under_water(w, dp);
   auto x = w.fluid.position();
   auto material = w.fluid.material();
-  for (std::size_t i = 0; i < w.fluid.size(); ++i) material[i] = x[i].y < 0.05 ? 1 : 0;
   writers::ProbesWriter writer(params_from_json(writers::ProbesWriter::describe(),
                                                 R"({"gauges": [[0.3, 0]], "gauge_names": ["W"],
                                                     "bed_gauges": [[0.05, 0], [0.15, 0], [0.25, 0], [0.35, 0]],
@@ -236,14 +243,7 @@ TEST(ProbesWriter, TheRunupLineFindsItsHighestWetPoint) {
   TempDir dir("probes-runup");
   World w;
   const double dp = 0.01;
-  w.lo = {0, 0, 0};
-  w.hi = {0.4, 0.3, 0};
-  w.gravity = {0, -9.81, 0};
-  w.materials = {{"water"}, {"sand"}};
-  test::fill_lattice(w, 2, w.lo, 40, 10, 1, dp);
-  auto x = w.fluid.position();
-  auto material = w.fluid.material();
-  for (std::size_t i = 0; i < w.fluid.size(); ++i) material[i] = x[i].y < 0.05 ? 1 : 0;
+  sand_under_water(w, dp);
   for (const char* only : {"", "sand"}) {
     const std::string extra = *only ? std::string(R"(, "runup_material": ")") + only + "\"" : "";
     writers::ProbesWriter writer(params_from_json(
