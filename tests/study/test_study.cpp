@@ -312,6 +312,11 @@ TEST(Study, DocDescribesTheStudyFile) {
   ASSERT_EQ(d.exit_code, 0) << d.output;
   for (const char* key : {"base", "axes", "combine", "measures", "checkpoint_minutes", "pointer", "reduce"})
     EXPECT_NE(d.output.find(key), std::string::npos) << key;
+  // A model's nested sections too: the probes writer's breaker analysis.
+  const auto probes = run_command(exe + " doc probes");
+  ASSERT_EQ(probes.exit_code, 0) << probes.output;
+  EXPECT_NE(probes.output.find("\nwaves:\nwaves (writer): breaker analysis"), std::string::npos) << probes.output;
+  EXPECT_NE(probes.output.find("  water_depth  "), std::string::npos) << probes.output;
 }
 
 TEST(StudyPieces, RangesGiveTheDecimalsWritten) {

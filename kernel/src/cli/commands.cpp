@@ -176,6 +176,20 @@ const ParamSet* find_section(const ParamSet& root, const std::string& name) {
   return nullptr;
 }
 
+// A parameter table, then the table of each nested object (a model's or the
+// study file's sections: a probes writer's "waves", a study's "axes").
+void print_doc_with_sections(const ParamSet& set, const std::string& what) {
+  std::fputs(doc_text(set, what).c_str(), stdout);
+  std::vector<const ParamSet*> sections{&set};
+  for (std::size_t k = 0; k < sections.size(); ++k)
+    for (const auto& spec : sections[k]->specs())
+      if (spec.nested && !spec.nested->specs().empty()) {
+        std::printf("\n%s:\n", spec.name.c_str());
+        std::fputs(doc_text(*spec.nested, what).c_str(), stdout);
+        sections.push_back(spec.nested.get());
+      }
+}
+
 const ModelRecord& find_model(PluginRegistry& registry, const std::string& spec) {
   // "NAME" or "KIND/NAME".
   std::string kind, name = spec;
@@ -339,24 +353,15 @@ int doc(const Args& args) {
     std::fputs(doc_text(scene_params(), "scene file").c_str(), stdout);
     return 0;
   }
-  if (o.positional.front() == "study") {  // small enough to show with its sections
-    const ParamSet study_file = study::study_params();
-    std::fputs(doc_text(study_file, "study file").c_str(), stdout);
-    std::vector<const ParamSet*> sections{&study_file};
-    for (std::size_t k = 0; k < sections.size(); ++k)
-      for (const auto& spec : sections[k]->specs())
-        if (spec.nested) {
-          std::printf("\n%s:\n", spec.name.c_str());
-          std::fputs(doc_text(*spec.nested, "study file").c_str(), stdout);
-          sections.push_back(spec.nested.get());
-        }
+  if (o.positional.front() == "study") {
+    print_doc_with_sections(study::study_params(), "study file");
     return 0;
   }
   PluginRegistry registry;
   open_registry(registry);
   try {
     const ModelRecord& m = find_model(registry, o.positional.front());
-    std::fputs(doc_text(*registry.model_params(m.kind, m.name), m.kind).c_str(), stdout);
+    print_doc_with_sections(*registry.model_params(m.kind, m.name), m.kind);
   } catch (const InputError&) {
     // Not a model: a section of the scene file (bodies, box_walls, time, ...)?
     const ParamSet* section = find_section(scene_params(), o.positional.front());
