@@ -53,13 +53,12 @@ std::string error_summary(std::size_t count, const std::string& file) {
 }
 
 Scene load_scene(const std::string& path, PluginRegistry& registry) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("error: " + path + ": cannot open scene file: " + std::strerror(errno));
-  std::stringstream buffer;
-  buffer << in.rdbuf();
+  std::string text;
+  if (!text::read_file(path, text))
+    throw InputError("error: " + path + ": cannot open scene file: " + std::strerror(errno));
   std::string base_dir = fs::path(path).parent_path().string();
   if (base_dir.empty()) base_dir = ".";
-  return parse_scene(buffer.str(), path, fs::path(path).stem().string(), base_dir, registry);
+  return parse_scene(std::move(text), path, fs::path(path).stem().string(), base_dir, registry);
 }
 
 Scene parse_scene(std::string text, const std::string& path, const std::string& name, const std::string& base_dir,

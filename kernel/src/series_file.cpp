@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "talus/error.hpp"
+#include "text.hpp"
 
 namespace talus {
 
@@ -23,11 +24,8 @@ std::vector<std::string> split_row(const std::string& line) {
 
 // The file's complete lines after the comments: the header first.
 std::vector<std::string> data_lines(const std::string& path, bool& readable) {
-  std::ifstream in(path, std::ios::binary);
-  readable = static_cast<bool>(in);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  std::string text = buffer.str();
+  std::string text;
+  readable = text::read_file(path, text);
   if (!text.empty() && text.back() != '\n') text.erase(text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1);
   std::vector<std::string> lines;
   std::stringstream all(text);
@@ -40,9 +38,11 @@ std::vector<std::string> data_lines(const std::string& path, bool& readable) {
 }  // namespace
 
 std::vector<std::string> series_header(const std::string& path) {
-  bool readable = false;
-  const auto lines = data_lines(path, readable);
-  return lines.empty() ? std::vector<std::string>{} : split_row(lines.front());
+  std::ifstream in(path, std::ios::binary);  // up to the header only: the rows can be long
+  std::string line;
+  while (std::getline(in, line) && (line.empty() || line[0] == '#')) {
+  }
+  return in && !line.empty() && line[0] != '#' ? split_row(line) : std::vector<std::string>{};
 }
 
 std::vector<std::vector<double>> read_series(const std::string& path, const std::vector<std::string>& columns) {

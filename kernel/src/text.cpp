@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <charconv>
+#include <fstream>
 #include <numeric>
+#include <sstream>
 
 namespace talus::text {
 
@@ -60,6 +62,15 @@ std::string pointer_token(std::string_view key) {
       out += c;
   }
   return out;
+}
+
+bool read_file(const std::string& path, std::string& text) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  text = buffer.str();
+  return true;
 }
 
 }  // namespace talus::text

@@ -18,5 +18,7 @@ TALUS_API std::string join(const std::vector<std::string>& items, std::string_vi
 TALUS_API std::string number(double v);
 // JSON-pointer escaping of one reference token (~ -> ~0, / -> ~1).
 TALUS_API std::string pointer_token(std::string_view key);
+// The whole of a file, bytes as they are; false (errno set) if it cannot be opened.
+TALUS_API bool read_file(const std::string& path, std::string& text);
 
 }  // namespace talus::text

@@ -25,6 +25,7 @@
 #include "study/variants.hpp"
 #include "talus/error.hpp"
 #include "talus/memory.hpp"
+#include "text.hpp"
 #include "validator.hpp"
 
 extern char** environ;
@@ -37,11 +38,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// A file's text; empty if it cannot be read (a missing log or note reads as nothing).
 std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
+  std::string text;
+  text::read_file(path.string(), text);
+  return text;
 }
 
 

@@ -65,11 +65,10 @@ Reduce reduce_of(const std::string& name) {
 }
 
 std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("error: " + path + ": cannot open study file: " + std::strerror(errno));
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
+  std::string text;
+  if (!text::read_file(path, text))
+    throw InputError("error: " + path + ": cannot open study file: " + std::strerror(errno));
+  return text;
 }
 
 }  // namespace
