@@ -403,6 +403,21 @@ void ProbesWriter::choose_vertical(const World& world) {
   up_ = g[vertical_] > 0.0 ? -1.0 : 1.0;
 }
 
+void ProbesWriter::MaterialSampler::configure(const World& world, const ParamValues& params, const char* key) {
+  material = world.find_material(params.string(key));
+  if (material < 0 || !world.fluid.has("material"))
+    params.fail(key, "'" + params.string(key) + "' is not a fluid material of this scene");
+  sampler.configure(world.dim, world.lo, world.hi, world.periodic, world.kernel);
+}
+
+void ProbesWriter::MaterialSampler::bind(const ParticleStore& fluid, std::span<const double> all_volumes) {
+  const auto of = fluid.integer("material");
+  volume.resize(fluid.size());
+#pragma omp parallel for
+  for (std::size_t i = 0; i < fluid.size(); ++i) volume[i] = of[i] == material ? all_volumes[i] : 0.0;
+  sampler.bind(fluid.position(), volume);
+}
+
 void ProbesWriter::check(const World& world) const { ProbesWriter(params_).prepare(world); }
 
 std::vector<std::string> ProbesWriter::series(const World& world) const {
@@ -478,18 +493,8 @@ void ProbesWriter::prepare(const World& world) {
       for (const Vec3& end : *runup_line_)
         if (!inside(end, false))
           params_.fail("runup_line", "the end " + point_text(end, world.dim) + " is outside the domain");
-    if (runup_line_ && params_.has("runup_material")) {
-      runup_material_ = world.find_material(params_.string("runup_material"));
-      if (runup_material_ < 0)
-        params_.fail("runup_material", "'" + params_.string("runup_material") + "' is not a fluid material of this scene");
-      runup_sampler_.configure(world.dim, world.lo, world.hi, world.periodic, world.kernel);
-    }
-    if (!bed_gauges_.empty()) {
-      bed_material_ = world.find_material(params_.string("bed_material"));
-      if (bed_material_ < 0 || !world.fluid.has("material"))
-        params_.fail("bed_material", "'" + params_.string("bed_material") + "' is not a fluid material of this scene");
-      bed_sampler_.configure(world.dim, world.lo, world.hi, world.periodic, world.kernel);
-    }
+    if (runup_line_ && params_.has("runup_material")) runup_wet_.configure(world, params_, "runup_material");
+    if (!bed_gauges_.empty()) bed_.configure(world, params_, "bed_material");
     sampler_.configure(world.dim, world.lo, world.hi, world.periodic, world.kernel);
     if (gauge_step_ <= 0.0) gauge_step_ = world.dp > 0.0 ? 0.25 * world.dp : 0.25 * world.kernel.h();
   }
@@ -713,26 +718,13 @@ void ProbesWriter::write(const World& world) {
       put(std::isnan(g.elevation) ? 0.0
                                   : air_below(sampler_, g.at, vertical_, g.elevation, bottom, gauge_step_,
                                               gauge_threshold_, min_gap));
-  if (!bed_gauges_.empty()) {  // the fill fraction of the bed material's particles alone
-    const auto material = fluid.integer("material");
-    bed_volume_.resize(fluid.size());
-#pragma omp parallel for
-    for (std::size_t i = 0; i < fluid.size(); ++i) bed_volume_[i] = material[i] == bed_material_ ? volume_[i] : 0.0;
-    bed_sampler_.bind(fluid.position(), bed_volume_);
-  }
+  if (!bed_gauges_.empty()) bed_.bind(fluid, volume_);
   for (auto& g : bed_gauges_)
-    put(surface_elevation(bed_sampler_, g.at, vertical_, bottom, top, gauge_step_, gauge_threshold_));
+    put(surface_elevation(bed_.sampler, g.at, vertical_, bottom, top, gauge_step_, gauge_threshold_));
   if (runup_line_) {
-    const SphSampler* wet = &sampler_;
-    if (runup_material_ >= 0) {
-      const auto material = fluid.integer("material");
-      runup_volume_.resize(fluid.size());
-#pragma omp parallel for
-      for (std::size_t i = 0; i < fluid.size(); ++i) runup_volume_[i] = material[i] == runup_material_ ? volume_[i] : 0.0;
-      runup_sampler_.bind(fluid.position(), runup_volume_);
-      wet = &runup_sampler_;
-    }
-    put(highest_wet_point(*wet, (*runup_line_)[0], (*runup_line_)[1], vertical_, up_, gauge_step_, gauge_threshold_));
+    if (runup_wet_.material >= 0) runup_wet_.bind(fluid, volume_);
+    const SphSampler& wet = runup_wet_.material >= 0 ? runup_wet_.sampler : sampler_;
+    put(highest_wet_point(wet, (*runup_line_)[0], (*runup_line_)[1], vertical_, up_, gauge_step_, gauge_threshold_));
   }
   if (material_masses_) {  // summed in particle id order: the re-sort does not change the sum's rounding
     std::vector<double> sums(world.materials.size(), 0.0);

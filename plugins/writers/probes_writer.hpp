@@ -32,6 +32,7 @@
 #include "file_io.hpp"
 #include "sph_sampler.hpp"
 #include "talus/params.hpp"
+#include "talus/particles.hpp"
 #include "talus/sph/fluid_terms.hpp"
 #include "talus/writer.hpp"
 
@@ -107,9 +108,17 @@ class ProbesWriter final : public Writer {
   std::vector<Vec3> points_;
   std::vector<std::string> point_names_;
   std::vector<Gauge> gauges_, bed_gauges_;
-  int bed_material_ = -1;
+  // The fill fraction of one material's particles alone (bed gauges; run-up over a bank).
+  struct MaterialSampler {
+    int material = -1;  // -1: not used
+    SphSampler sampler;
+    std::vector<double> volume;  // V_j for that material's particles, 0 for the others
+    void configure(const World& world, const ParamValues& params, const char* key);
+    void bind(const ParticleStore& fluid, std::span<const double> all_volumes);
+  };
+  MaterialSampler bed_;
   std::optional<std::array<Vec3, 2>> runup_line_;
-  int runup_material_ = -1;  // -1: every fluid particle is wet
+  MaterialSampler runup_wet_;  // unused: every fluid particle is wet
   bool bed_change_ = true;  // two bed gauges or more: the eroded and deposited cross-section
   std::vector<Quantity> integrals_;
   bool block_forces_ = false;
@@ -129,8 +138,8 @@ class ProbesWriter final : public Writer {
   std::vector<WriterResult> results_;
   std::string path_, results_path_;
   LineFile file_;
-  SphSampler sampler_, bed_sampler_, runup_sampler_;
-  std::vector<double> volume_, bed_volume_, runup_volume_;
+  SphSampler sampler_;
+  std::vector<double> volume_;
   std::vector<Neighbour> neighbours_;
   std::string row_;
   bool have_last_step_ = false;
