@@ -14,6 +14,9 @@ packages=(
   # Clang and its OpenMP runtime: one test builds an out-of-tree plugin with clang and checks
   # that a GCC-built talus loads it (the test skips, saying so, without them).
   clang libomp-dev
+  # Runs over MPI ranks (CMake's TALUS_WITH_MPI=AUTO builds it when these are present):
+  # Open MPI for the messages, Zoltan for the partition.
+  libopenmpi-dev openmpi-bin libtrilinos-zoltan-dev
 )
 
 missing=()

@@ -98,16 +98,6 @@ class In {
   std::uint64_t left_;
 };
 
-std::size_t field_bytes(FieldType type) {
-  switch (type) {
-    case FieldType::scalar: return sizeof(double);
-    case FieldType::vector: return sizeof(Vec3);
-    case FieldType::integer: return sizeof(std::int32_t);
-    case FieldType::id: return sizeof(std::uint64_t);
-  }
-  return 0;
-}
-
 void save_store(Out& out, const ParticleStore& store) {
   out.pod<std::uint64_t>(store.size());
   out.pod<std::uint64_t>(store.next_id());
@@ -116,12 +106,8 @@ void save_store(Out& out, const ParticleStore& store) {
   for (const auto& f : fields) {
     out.text(f.name);
     out.pod<std::uint8_t>(static_cast<std::uint8_t>(f.type));
-    switch (f.type) {
-      case FieldType::scalar: { auto s = store.scalar(f.name); out.bytes(s.data(), s.size_bytes()); break; }
-      case FieldType::vector: { auto s = store.vector(f.name); out.bytes(s.data(), s.size_bytes()); break; }
-      case FieldType::integer: { auto s = store.integer(f.name); out.bytes(s.data(), s.size_bytes()); break; }
-      case FieldType::id: { auto s = store.ids(); out.bytes(s.data(), s.size_bytes()); break; }
-    }
+    const auto column = store.bytes(f.name);
+    out.bytes(column.data(), column.size());
   }
 }
 
@@ -136,7 +122,7 @@ void load_store(In& in, ParticleStore& store, const std::string& which) {
     in.fail("the " + which + " store has " + std::to_string(count) + " fields, this scene's stages use " +
             std::to_string(fields.size()));
   std::uint64_t per_particle = 0;
-  for (const auto& f : fields) per_particle += field_bytes(f.type);
+  for (const auto& f : fields) per_particle += ParticleStore::element_bytes(f.type);
   if (n > in.left() / std::max<std::uint64_t>(per_particle, 1))
     in.fail("the " + which + " store claims " + std::to_string(n) + " particles, more than the " +
             std::to_string(in.left()) + " bytes left in the file can hold");

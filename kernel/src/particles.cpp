@@ -96,10 +96,42 @@ std::span<const std::int32_t> ParticleStore::integer(std::string_view n) const {
 std::span<std::uint64_t> ParticleStore::ids() { return std::get<3>(field("id", FieldType::id).data); }
 std::span<const std::uint64_t> ParticleStore::ids() const { return std::get<3>(field("id", FieldType::id).data); }
 
+std::size_t ParticleStore::element_bytes(FieldType type) {
+  switch (type) {
+    case FieldType::scalar: return sizeof(double);
+    case FieldType::vector: return sizeof(Vec3);
+    case FieldType::integer: return sizeof(std::int32_t);
+    case FieldType::id: return sizeof(std::uint64_t);
+  }
+  return 0;
+}
+
+std::span<std::byte> ParticleStore::bytes(std::string_view name) {
+  const auto b = std::as_const(*this).bytes(name);
+  return {const_cast<std::byte*>(b.data()), b.size()};
+}
+
+std::span<const std::byte> ParticleStore::bytes(std::string_view name) const {
+  for (const auto& f : fields_)
+    if (f.info.name == name)
+      return std::visit([](const auto& column) { return std::as_bytes(std::span(column)); }, f.data);
+  throw std::logic_error("no particle field '" + std::string(name) + "'");
+}
+
+void ParticleStore::resize_columns(std::size_t n) {
+  for (auto& f : fields_) std::visit([&](auto& column) { column.resize(n); }, f.data);
+}
+
+void ParticleStore::require_no_halo(const char* operation) const {
+  if (halo_ != 0)
+    throw std::logic_error(std::string("ParticleStore::") + operation + ": the store holds halo rows (drop them first)");
+}
+
 std::size_t ParticleStore::append(std::size_t n) {
+  require_no_halo("append");
   const std::size_t first = size_;
   size_ += n;
-  for (auto& f : fields_) std::visit([&](auto& column) { column.resize(size_); }, f.data);
+  resize_columns(size_);
   auto id = ids();
   for (std::size_t i = first; i < size_; ++i) id[i] = next_id_++;
   return first;
@@ -109,7 +141,22 @@ void ParticleStore::reserve(std::size_t n) {
   for (auto& f : fields_) std::visit([&](auto& column) { column.reserve(n); }, f.data);
 }
 
+std::size_t ParticleStore::append_halo(std::size_t n) {
+  const std::size_t first = size_;
+  size_ += n;
+  halo_ += n;
+  resize_columns(size_);
+  return first;
+}
+
+void ParticleStore::drop_halo() {
+  size_ -= halo_;
+  halo_ = 0;
+  resize_columns(size_);
+}
+
 void ParticleStore::reorder(std::span<const Index> order) {
+  require_no_halo("reorder");
   if (order.size() != size_) throw std::logic_error("ParticleStore::reorder: permutation size mismatch");
   // In place, cycle by cycle: a bit per particle instead of a copy of the largest column.
   std::vector<std::uint64_t> done((size_ + 63) / 64);
@@ -137,6 +184,7 @@ void ParticleStore::reorder(std::span<const Index> order) {
 }
 
 std::size_t ParticleStore::remove_if(std::span<const std::uint8_t> flags) {
+  require_no_halo("remove_if");
   if (flags.size() != size_) throw std::logic_error("ParticleStore::remove_if: flag size mismatch");
   std::size_t kept = 0;
   for (std::size_t i = 0; i < size_; ++i) kept += flags[i] ? 0 : 1;

@@ -13,6 +13,10 @@ const char* to_string(BodyKind kind) {
   return "?";
 }
 
+Parallel::~Parallel() = default;
+
+Parallel World::serial_;
+
 World::World() = default;
 World::~World() = default;
 

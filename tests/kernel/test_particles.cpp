@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "cell_order.hpp"
+#include "store_rows.hpp"
 #include "talus/particles.hpp"
 
 namespace talus {
@@ -82,6 +83,64 @@ TEST(ParticleStore, ReorderAndRemoveKeepEveryFieldAndId) {
   // New particles get fresh global ids, never reused ones.
   EXPECT_EQ(s.append(1), 3u);
   EXPECT_EQ(s.ids()[3], 5u);
+}
+
+TEST(ParticleStore, HaloRowsStayBehindTheOwnedOnes) {
+  ParticleStore s;
+  s.append(3);
+  EXPECT_EQ(s.append_halo(2), 3u);
+  EXPECT_EQ(s.size(), 5u);
+  EXPECT_EQ(s.owned_size(), 3u);
+  EXPECT_EQ(s.halo_size(), 2u);
+  EXPECT_EQ(s.next_id(), 3u);  // halo rows carry their owners' ids, not new ones
+  // Appending, re-sorting and removing would mix owned and halo rows.
+  EXPECT_THROW(s.append(1), std::logic_error);
+  const std::vector<Index> order{0, 1, 2, 3, 4};
+  EXPECT_THROW(s.reorder(order), std::logic_error);
+  const std::vector<std::uint8_t> none(5, 0);
+  EXPECT_THROW(s.remove_if(none), std::logic_error);
+  s.drop_halo();
+  EXPECT_EQ(s.size(), 3u);
+  EXPECT_EQ(s.halo_size(), 0u);
+  EXPECT_EQ(s.position().size(), 3u);
+  EXPECT_EQ(s.append(1), 3u);
+}
+
+TEST(StoreRows, PackedRowsUnpackIntoAnotherStoreFieldByField) {
+  ParticleStore a, b;
+  for (ParticleStore* s : {&a, &b}) {
+    s->require({"rho", FieldType::scalar, "kg/m^3", true, true});
+    s->require({"flag", FieldType::integer, "", true, true});
+  }
+  a.append(4);
+  for (std::size_t i = 0; i < 4; ++i) {
+    a.scalar("rho")[i] = 1000.0 + static_cast<double>(i);
+    a.integer("flag")[i] = static_cast<std::int32_t>(10 * i);
+    a.position()[i] = {0.5 * static_cast<double>(i), -1.0, 2.0};
+  }
+  const auto fields = all_fields(a);
+  EXPECT_EQ(row_bytes(a, fields), 8u + 4u + 4u + 24u + 8u + 4u);  // id body material position rho flag
+  std::vector<std::byte> packet;
+  const std::vector<Index> rows{3, 1};
+  pack_rows(a, fields, rows, packet);
+  ASSERT_EQ(packet.size(), 2 * row_bytes(a, fields));
+  b.append(1);
+  b.append_halo(2);
+  unpack_rows(b, fields, packet, 1, 2);
+  EXPECT_EQ(b.ids()[1], 3u);
+  EXPECT_EQ(b.ids()[2], 1u);
+  EXPECT_EQ(b.scalar("rho")[1], 1003.0);
+  EXPECT_EQ(b.integer("flag")[2], 10);
+  EXPECT_EQ(b.position()[1].x, 1.5);
+  // A subset of fields: only those are overwritten.
+  const std::vector<std::string> rho_only{"rho"};
+  std::vector<std::byte> small;
+  a.scalar("rho")[1] = -7.0;
+  pack_rows(a, rho_only, std::vector<Index>{1}, small);
+  unpack_rows(b, rho_only, small, 2, 1);
+  EXPECT_EQ(b.scalar("rho")[2], -7.0);
+  EXPECT_EQ(b.integer("flag")[2], 10);
+  EXPECT_THROW(unpack_rows(b, rho_only, small, 2, 2), std::logic_error);
 }
 
 }  // namespace

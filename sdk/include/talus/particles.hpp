@@ -3,11 +3,17 @@
 // allocated. Every field is one contiguous array (a Vec3 field is an array of
 // Vec3), so a pair loop touches only the arrays it needs.
 //
-// Always present: "id" (global id, survives re-sorting and removal, ready for
-// halo exchange), "body" (index of the scene body), "material" (index of the
+// Always present: "id" (global id, survives re-sorting, removal and moving to
+// another rank), "body" (index of the scene body), "material" (index of the
 // material, or -1), "position".
+//
+// On a run spread over MPI ranks (parallel.hpp) the rank's own particles come
+// first, [0, owned_size()); behind them are halo rows, copies of other ranks'
+// particles that this rank's pair loops read. Appending, re-sorting and
+// removing work on a store without halo rows only (the host drops them first).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -36,6 +42,11 @@ class TALUS_API ParticleStore {
   ParticleStore();
 
   std::size_t size() const { return size_; }
+  std::size_t owned_size() const { return size_ - halo_; }
+  std::size_t halo_size() const { return halo_; }
+
+  // Bytes of one particle's value of a field of this type.
+  static std::size_t element_bytes(FieldType type);
 
   // Registers a field if it does not exist yet (idempotent; the type must
   // match an existing registration) and returns nothing: use the accessors.
@@ -52,6 +63,10 @@ class TALUS_API ParticleStore {
   std::span<const std::int32_t> integer(std::string_view name) const;
   std::span<std::uint64_t> ids();
   std::span<const std::uint64_t> ids() const;
+  // Any field as raw bytes, element_bytes(type) per particle: for code that
+  // moves whole particles without knowing their fields (checkpoints, ranks).
+  std::span<std::byte> bytes(std::string_view name);
+  std::span<const std::byte> bytes(std::string_view name) const;
 
   // Frequent fields, by direct handle.
   std::span<Vec3> position() { return vector("position"); }
@@ -70,6 +85,12 @@ class TALUS_API ParticleStore {
   std::size_t remove_if(std::span<const std::uint8_t> flags);
   void reserve(std::size_t n);
 
+  // Appends n halo rows with zeroed fields (the caller copies the owners'
+  // values, ids included); returns the index of the first one.
+  std::size_t append_halo(std::size_t n);
+  // Removes every halo row.
+  void drop_halo();
+
   std::uint64_t next_id() const { return next_id_; }
   void set_next_id(std::uint64_t id) { next_id_ = id; }
 
@@ -83,8 +104,12 @@ class TALUS_API ParticleStore {
   Field& field(std::string_view name, FieldType type);
   const Field& field(std::string_view name, FieldType type) const;
 
+  void resize_columns(std::size_t n);
+  void require_no_halo(const char* operation) const;
+
   std::vector<Field> fields_;
   std::size_t size_ = 0;
+  std::size_t halo_ = 0;
   std::uint64_t next_id_ = 0;
 };
 

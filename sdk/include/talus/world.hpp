@@ -12,6 +12,7 @@
 
 #include "talus/config.hpp"
 #include "talus/kernel_table.hpp"
+#include "talus/parallel.hpp"
 #include "talus/params.hpp"
 #include "talus/particles.hpp"
 #include "talus/vec3.hpp"
@@ -96,7 +97,13 @@ class TALUS_API World {
   int find_material(std::string_view name) const;
   int find_body(std::string_view name) const;
 
+  // The ranks this run is spread over (the serial no-op unless the host set one).
+  Parallel& parallel() const { return parallel_ ? *parallel_ : serial_; }
+  void set_parallel(Parallel* parallel) { parallel_ = parallel; }
+
  private:
+  static Parallel serial_;
+  Parallel* parallel_ = nullptr;
   std::vector<std::vector<Index>> material_index_;
 };
 

@@ -1,0 +1,290 @@
+#include "rank_exchange.hpp"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <stdexcept>
+
+#include "../store_rows.hpp"
+
+namespace talus::mpi {
+
+namespace {
+
+int message_size(std::size_t bytes) {
+  if (bytes > static_cast<std::size_t>(INT_MAX))
+    throw std::runtime_error("MPI: a message of " + std::to_string(bytes) + " bytes is over MPI's int count limit");
+  return static_cast<int>(bytes);
+}
+
+}  // namespace
+
+RankExchange::RankExchange(MPI_Comm comm, const ExchangeSettings& settings)
+    : comm_(comm), settings_(settings), cuts_(comm, settings.dim, settings.method, settings.imbalance) {
+  MPI_Comm_rank(comm_, &rank_);
+  MPI_Comm_size(comm_, &ranks_);
+  if (!(settings_.cell > 0.0) || !(settings_.reach >= 0.0))
+    throw std::logic_error("RankExchange: cell size and halo reach must be positive");
+}
+
+double RankExchange::sum(double local) const {
+  std::vector<double> all(nranks());
+  MPI_Allgather(&local, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, comm_);
+  double total = 0.0;
+  for (const double v : all) total += v;  // rank order: the same bits on every rank and every run
+  return total;
+}
+
+std::uint64_t RankExchange::sum(std::uint64_t local) const {
+  std::uint64_t total = 0;
+  MPI_Allreduce(&local, &total, 1, MPI_UINT64_T, MPI_SUM, comm_);
+  return total;
+}
+
+double RankExchange::max(double local) const {
+  double out = 0.0;
+  MPI_Allreduce(&local, &out, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  return out;
+}
+
+double RankExchange::min(double local) const {
+  double out = 0.0;
+  MPI_Allreduce(&local, &out, 1, MPI_DOUBLE, MPI_MIN, comm_);
+  return out;
+}
+
+Vec3 RankExchange::cell_centre(const Vec3& x) const {
+  Vec3 c = x;
+  for (int a = 0; a < settings_.dim; ++a)
+    c[a] = settings_.lo[a] + (std::floor((x[a] - settings_.lo[a]) / settings_.cell) + 0.5) * settings_.cell;
+  return c;
+}
+
+void RankExchange::scatter(std::span<ParticleStore* const> stores, std::span<const float> weights) {
+  for (ParticleStore* store : stores) {
+    store->drop_halo();
+    const std::size_t n = store->size();
+    const std::size_t first = n * static_cast<std::size_t>(rank_) / nranks();
+    const std::size_t last = n * static_cast<std::size_t>(rank_ + 1) / nranks();
+    std::vector<std::uint8_t> drop(n, 1);
+    std::fill(drop.begin() + static_cast<std::ptrdiff_t>(first), drop.begin() + static_cast<std::ptrdiff_t>(last), 0);
+    store->remove_if(drop);
+  }
+  balance(stores, weights);
+}
+
+void RankExchange::balance(std::span<ParticleStore* const> stores, std::span<const float> weights) {
+  drop_halos(stores);
+  std::vector<Vec3> places;
+  std::vector<float> cost;
+  for (std::size_t s = 0; s < stores.size(); ++s) {
+    const auto x = stores[s]->position();
+    for (const Vec3& p : x) places.push_back(cell_centre(p));
+    cost.insert(cost.end(), x.size(), weights[s]);
+  }
+  const std::vector<int> owner = cuts_.partition(places, cost);
+  std::size_t at = 0;
+  for (ParticleStore* store : stores) {
+    const std::size_t n = store->size();
+    move(*store, std::span<const int>(owner).subspan(at, n));
+    at += n;
+  }
+}
+
+void RankExchange::migrate(std::span<ParticleStore* const> stores) {
+  if (!cuts_.has_cuts()) throw std::logic_error("RankExchange::migrate before the first balance");
+  drop_halos(stores);
+  for (ParticleStore* store : stores) {
+    const auto x = store->position();
+    std::vector<int> owner(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) owner[i] = cuts_.owner(cell_centre(x[i]));
+    move(*store, owner);
+  }
+}
+
+void RankExchange::move(ParticleStore& store, std::span<const int> destination) {
+  const auto fields = all_fields(store);
+  std::vector<std::vector<Index>> rows(nranks());
+  std::vector<std::uint8_t> leaves(store.size(), 0);
+  for (std::size_t i = 0; i < destination.size(); ++i)
+    if (destination[i] != rank_) {
+      rows[destination[i]].push_back(static_cast<Index>(i));
+      leaves[i] = 1;
+    }
+  std::vector<std::byte> out;
+  std::vector<int> send_bytes(nranks()), send_at(nranks());
+  for (std::size_t r = 0; r < nranks(); ++r) {
+    const std::size_t before = out.size();
+    pack_rows(store, fields, rows[r], out);
+    send_at[r] = message_size(before);
+    send_bytes[r] = message_size(out.size() - before);
+  }
+  std::vector<int> receive_bytes(nranks()), receive_at(nranks());
+  MPI_Alltoall(send_bytes.data(), 1, MPI_INT, receive_bytes.data(), 1, MPI_INT, comm_);
+  std::size_t total = 0;
+  for (std::size_t r = 0; r < nranks(); ++r) {
+    receive_at[r] = message_size(total);
+    total += static_cast<std::size_t>(receive_bytes[r]);
+  }
+  std::vector<std::byte> in(total);
+  MPI_Alltoallv(out.data(), send_bytes.data(), send_at.data(), MPI_BYTE, in.data(), receive_bytes.data(),
+                receive_at.data(), MPI_BYTE, comm_);
+
+  store.remove_if(leaves);
+  const std::size_t per_row = row_bytes(store, fields);
+  const std::uint64_t next_id = store.next_id();  // arriving particles keep their ids
+  std::size_t first = store.append(total / per_row);
+  store.set_next_id(next_id);
+  for (std::size_t r = 0; r < nranks(); ++r) {
+    const auto bytes = static_cast<std::size_t>(receive_bytes[r]);
+    const std::size_t count = bytes / per_row;
+    const auto packet = std::span<const std::byte>(in).subspan(static_cast<std::size_t>(receive_at[r]), bytes);
+    unpack_rows(store, fields, packet, first, count);
+    first += count;
+  }
+}
+
+void RankExchange::ranks_near(const Vec3& x, double w, std::vector<int>& out) const {
+  // Periodic images of the box: a shift by the period on each axis the box crosses.
+  std::array<std::vector<double>, 3> shifts;
+  for (int a = 0; a < 3; ++a) {
+    shifts[a] = {0.0};
+    if (a >= settings_.dim || !settings_.periodic[a]) continue;
+    const double period = settings_.hi[a] - settings_.lo[a];
+    if (x[a] - w < settings_.lo[a]) shifts[a].push_back(period);
+    if (x[a] + w > settings_.hi[a]) shifts[a].push_back(-period);
+  }
+  const std::size_t start = out.size();
+  for (const double sx : shifts[0])
+    for (const double sy : shifts[1])
+      for (const double sz : shifts[2]) {
+        const Vec3 c{x.x + sx, x.y + sy, x.z + sz};
+        cuts_.ranks_meeting({c.x - w, c.y - w, c.z - w}, {c.x + w, c.y + w, c.z + w}, out);
+      }
+  std::sort(out.begin() + static_cast<std::ptrdiff_t>(start), out.end());
+  out.erase(std::unique(out.begin() + static_cast<std::ptrdiff_t>(start), out.end()), out.end());
+  out.erase(std::remove(out.begin() + static_cast<std::ptrdiff_t>(start), out.end(), rank_), out.end());
+}
+
+void RankExchange::drop_halos(std::span<ParticleStore* const> stores) {
+  for (ParticleStore* store : stores) store->drop_halo();
+  plans_.clear();
+}
+
+void RankExchange::build_halos(std::span<ParticleStore* const> stores) {
+  drop_halos(stores);
+  // An owned particle's cell centre is inside this rank's region, at most half
+  // a cell from the particle on each axis: the box reaches that much further.
+  const double w = settings_.reach + 0.5 * settings_.cell;
+  for (ParticleStore* store : stores) {
+    HaloPlan plan;
+    plan.store = store;
+    std::vector<std::vector<Index>> send(nranks());
+    std::vector<int> near;
+    const auto x = store->position();
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      near.clear();
+      ranks_near(x[i], w, near);
+      for (const int r : near) send[static_cast<std::size_t>(r)].push_back(static_cast<Index>(i));
+    }
+    std::vector<std::uint64_t> send_count(nranks()), receive_count(nranks());
+    for (std::size_t r = 0; r < nranks(); ++r) send_count[r] = send[r].size();
+    MPI_Alltoall(send_count.data(), 1, MPI_UINT64_T, receive_count.data(), 1, MPI_UINT64_T, comm_);
+    std::size_t halo = 0;
+    for (std::size_t r = 0; r < nranks(); ++r)
+      if (send_count[r] > 0 || receive_count[r] > 0) {
+        plan.neighbours.push_back(static_cast<int>(r));
+        plan.send.push_back(std::move(send[r]));
+        plan.receive.push_back(receive_count[r]);
+        halo += receive_count[r];
+      }
+    store->append_halo(halo);
+    plans_.push_back(std::move(plan));
+    refresh_halo(*store, all_fields(*store));
+  }
+}
+
+void RankExchange::gather_to_root(std::span<ParticleStore* const> stores) {
+  drop_halos(stores);
+  own_before_gather_.clear();
+  for (ParticleStore* store : stores) {
+    own_before_gather_.push_back(store->size());
+    const auto fields = all_fields(*store);
+    std::vector<std::byte> mine;
+    if (rank_ != 0) {
+      std::vector<Index> rows(store->size());
+      std::iota(rows.begin(), rows.end(), Index{0});
+      pack_rows(*store, fields, rows, mine);
+    }
+    const int bytes = message_size(mine.size());
+    std::vector<int> counts(nranks()), at(nranks());
+    MPI_Gather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_);
+    std::size_t total = 0;
+    for (std::size_t r = 0; r < nranks(); ++r) {
+      at[r] = message_size(total);
+      total += static_cast<std::size_t>(counts[r]);
+    }
+    std::vector<std::byte> in(rank_ == 0 ? total : 0);
+    MPI_Gatherv(mine.data(), bytes, MPI_BYTE, in.data(), counts.data(), at.data(), MPI_BYTE, 0, comm_);
+    if (rank_ != 0) continue;
+    const std::size_t per_row = row_bytes(*store, fields);
+    const std::uint64_t next_id = store->next_id();
+    std::size_t first = store->append(total / per_row);
+    store->set_next_id(next_id);
+    for (std::size_t r = 1; r < nranks(); ++r) {
+      const auto n = static_cast<std::size_t>(counts[r]);
+      const auto packet = std::span<const std::byte>(in).subspan(static_cast<std::size_t>(at[r]), n);
+      unpack_rows(*store, fields, packet, first, n / per_row);
+      first += n / per_row;
+    }
+  }
+}
+
+void RankExchange::release_gathered(std::span<ParticleStore* const> stores) {
+  if (own_before_gather_.size() != stores.size())
+    throw std::logic_error("RankExchange::release_gathered without gather_to_root");
+  for (std::size_t s = 0; s < stores.size(); ++s) {
+    std::vector<std::uint8_t> others(stores[s]->size(), 0);
+    std::fill(others.begin() + static_cast<std::ptrdiff_t>(own_before_gather_[s]), others.end(), 1);
+    stores[s]->remove_if(others);
+  }
+  own_before_gather_.clear();
+}
+
+void RankExchange::swap_packets(std::span<const int> neighbours, std::span<const std::vector<std::byte>> packets,
+                                std::span<std::vector<std::byte>> inbox) const {
+  std::vector<MPI_Request> requests;
+  requests.reserve(2 * neighbours.size());
+  for (std::size_t k = 0; k < neighbours.size(); ++k) {
+    requests.emplace_back();
+    MPI_Irecv(inbox[k].data(), message_size(inbox[k].size()), MPI_BYTE, neighbours[k], 0, comm_, &requests.back());
+  }
+  for (std::size_t k = 0; k < neighbours.size(); ++k) {
+    requests.emplace_back();
+    MPI_Isend(packets[k].data(), message_size(packets[k].size()), MPI_BYTE, neighbours[k], 0, comm_,
+              &requests.back());
+  }
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+}
+
+void RankExchange::refresh_halo(ParticleStore& store, std::span<const std::string> fields) {
+  const auto plan = std::find_if(plans_.begin(), plans_.end(), [&](const HaloPlan& p) { return p.store == &store; });
+  if (plan == plans_.end()) return;  // a store without a halo (a rank with no neighbour)
+  const std::size_t per_row = row_bytes(store, fields);
+  const std::size_t n = plan->neighbours.size();
+  std::vector<std::vector<std::byte>> packets(n), inbox(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    pack_rows(store, fields, plan->send[k], packets[k]);
+    inbox[k].resize(plan->receive[k] * per_row);
+  }
+  swap_packets(plan->neighbours, packets, inbox);
+  std::size_t first = store.owned_size();
+  for (std::size_t k = 0; k < n; ++k) {
+    unpack_rows(store, fields, inbox[k], first, plan->receive[k]);
+    first += plan->receive[k];
+  }
+}
+
+}  // namespace talus::mpi
