@@ -17,6 +17,7 @@
 #include "talus/number_text.hpp"
 #include "output_schedule.hpp"
 #include "progress.hpp"
+#include "ranks.hpp"
 #include "run_summary.hpp"
 #include "stop_signals.hpp"
 #include "talus/blocks.hpp"
@@ -50,11 +51,13 @@ Simulation::Simulation(PluginRegistry& registry, Scene scene) : registry_(regist
   build_writers();
 }
 
-Simulation::~Simulation() = default;
+Simulation::~Simulation() = default;  // here: ranks::Host is complete
 
 int Simulation::run(const RunOptions& options) {
   if (options.threads > 0) omp_set_num_threads(options.threads);
   if (!options.restart.empty()) read_checkpoint(options.restart);
+  spread_over_ranks(!options.restart.empty());
+  const bool root = ranks::rank() == 0;  // the rank that writes and prints
 
   // Output folder: created only now that every input check has passed.
   output_directory_ = options.output_directory.empty() ? "out/" + scene_.name : options.output_directory;
@@ -65,7 +68,8 @@ int Simulation::run(const RunOptions& options) {
     throw RunError("error: output folder " + output_directory_ + " is not writable: " + std::strerror(errno));
 
   OutputContext context{output_directory_, scene_.name, scene_.text, TALUS_VERSION_STRING, !options.restart.empty()};
-  for (auto& w : writers_) w.writer->open(context, world_);
+  if (root)
+    for (auto& w : writers_) w.writer->open(context, world_);
 
   const ParamValues& time = scene_.values.object("time");
   const double dt_max = time.has("dt_max") ? time.real("dt_max") : std::numeric_limits<double>::infinity();
@@ -103,7 +107,15 @@ int Simulation::run(const RunOptions& options) {
   // previous handlers are back when run() returns.
   const StopSignals stop_signals;
 
-  Progress progress(options.quiet, options.progress_seconds);
+  Progress progress(options.quiet || !root, options.progress_seconds);
+  auto fluid_count = [&] {  // over every rank
+    const std::size_t own = world_.fluid.owned_size();
+    return ranks_ ? static_cast<std::size_t>(ranks_->sum(static_cast<std::uint64_t>(own))) : own;
+  };
+  auto wall_count = [&] {
+    const std::size_t own = world_.boundary.owned_size();
+    return ranks_ ? static_cast<std::size_t>(ranks_->sum(static_cast<std::uint64_t>(own))) : own;
+  };
   const std::uint64_t first_step = world_.step;
   std::uint64_t particle_steps = 0, wall_particle_steps = 0;
   double wall_at_last_checkpoint = 0.0;
@@ -111,9 +123,12 @@ int Simulation::run(const RunOptions& options) {
   phases_.setup += since_start_.lap();
   if (options.restart.empty()) write_due_outputs(true);
   phases_.outputs += since_start_.lap();
-  if (!options.quiet)
-    std::printf("talus: running %s: %zu fluid particles, %zu wall particles%s, to t = %s s; output in %s\n",
-                scene_.path.c_str(), world_.fluid.size(), world_.boundary.size(),
+  const std::size_t fluid_at_start = fluid_count(), walls_at_start = wall_count();
+  if (!options.quiet && root)
+    std::printf("talus: running %s%s: %zu fluid particles, %zu wall particles%s, to t = %s s; output in %s\n",
+                scene_.path.c_str(),
+                ranks_ ? (" on " + std::to_string(ranks_->ranks()) + " MPI ranks").c_str() : "", fluid_at_start,
+                walls_at_start,
                 world_.blocks ? (", " + std::to_string(world_.blocks->size()) + " blocks").c_str() : "",
                 fixed(world_.end_time).c_str(), output_directory_.c_str());
   print_new_warnings();
@@ -126,6 +141,7 @@ int Simulation::run(const RunOptions& options) {
         dt = std::min(dt, stages_[i]->stable_time_step(world_));
         phases_.stages[i] += since_start_.lap();
       }
+      if (ranks_) dt = ranks_->min(dt);
       if (!(dt > 0.0) || !std::isfinite(dt))
         throw RunError("error: step " + std::to_string(world_.step) + " (t = " + fixed(world_.time, 6) +
                        " s): the stages report no usable time step (dt = " + text::number(dt) + ")");
@@ -135,10 +151,14 @@ int Simulation::run(const RunOptions& options) {
       }
       world_.time += dt;
       ++world_.step;
-      particle_steps += world_.fluid.size();
-      wall_particle_steps += world_.boundary.size();
-      remove_escaped_particles();
-      if (world_.step % resort_every_ == 0) resort_particles();
+      particle_steps += world_.fluid.owned_size();
+      wall_particle_steps += world_.boundary.owned_size();
+      if (ranks_) {
+        rank_upkeep(world_.step % resort_every_ == 0);
+      } else {
+        remove_escaped_particles();
+        if (world_.step % resort_every_ == 0) resort_particles();
+      }
       check_finite();
       phases_.host += since_start_.lap();
       write_due_outputs(false);
@@ -157,8 +177,12 @@ int Simulation::run(const RunOptions& options) {
           const std::string st = stages_[i]->status(world_);
           if (!st.empty()) status += (status.empty() ? "" : "  ") + stage_names_[i] + ": " + st;
         }
-      progress.update(world_.time, world_.end_time, dt, world_.step, world_.fluid.size(), status);
+      progress.update(world_.time, world_.end_time, dt, world_.step, ranks_ ? fluid_count() : world_.fluid.size(),
+                      status);
       if (const int sig = stop_signals.caught()) {
+        if (ranks_)
+          throw RunError("error: stopped by signal " + std::to_string(sig) + " at step " + std::to_string(world_.step) +
+                         "; a run on several MPI ranks cannot write its checkpoint yet");
         progress.finish();
         write_due_outputs(true);
         print_new_warnings();
@@ -177,18 +201,26 @@ int Simulation::run(const RunOptions& options) {
   } catch (const RunError&) {
     progress.finish();
     print_new_warnings();
-    for (auto& w : writers_) {
-      try {
-        w.writer->close(world_);
-      } catch (const std::exception&) {
+    if (root)
+      for (auto& w : writers_) {
+        try {
+          w.writer->close(world_);
+        } catch (const std::exception&) {
+        }
       }
-    }
     throw;
   }
   progress.finish();
   phases_.host += since_start_.lap();
   if (last_output_time_ < world_.time) write_due_outputs(true);
-  for (auto& w : writers_) w.writer->close(world_);
+  if (ranks_) {  // the summary counts every rank's particles and steps
+    particle_steps = ranks_->sum(static_cast<std::uint64_t>(particle_steps));
+    wall_particle_steps = ranks_->sum(static_cast<std::uint64_t>(wall_particle_steps));
+    world_.removed = ranks_->sum(static_cast<std::uint64_t>(world_.removed));
+    gather_for_writers();
+  }
+  if (root)
+    for (auto& w : writers_) w.writer->close(world_);
   print_new_warnings();
   std::vector<std::string> finish_lines;
   for (auto& stage : stages_)
@@ -199,6 +231,7 @@ int Simulation::run(const RunOptions& options) {
   const RunSummary summary{scene_.path, world_, stages_, stage_names_, writers_, finish_lines,
                            world_.step - first_step, particle_steps, wall_particle_steps, wall, peak_memory_mib(),
                            phases_};
+  if (!root) return 0;
   if (!options.summary_file.empty()) write_summary_file(summary, options.summary_file);
   if (!options.quiet) print_summary(summary);
   return 0;

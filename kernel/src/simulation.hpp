@@ -18,6 +18,9 @@
 namespace talus {
 
 class PluginRegistry;
+namespace ranks {
+class Host;
+}
 class Stage;
 class Writer;
 class Model;
@@ -77,6 +80,14 @@ class TALUS_API Simulation {
   std::vector<std::string> check_stage_parts() const;  // the pipeline against the stages' StageParts
   void build_writers();
   void remove_escaped_particles();
+  std::size_t flag_escaped_particles();  // wraps periodic axes; returns how many owned particles left the domain
+  void remove_flagged_particles();
+  // Several MPI ranks (simulation_ranks.cpp): share the world out, keep owners and halos current.
+  void spread_over_ranks(bool restart);
+  void rebuild_ranks();
+  void rank_upkeep(bool resort_due);
+  void gather_for_writers();
+  void release_after_writers();
   void print_new_warnings();
   void resort_particles();
   void check_finite() const;
@@ -99,6 +110,9 @@ class TALUS_API Simulation {
   std::vector<std::uint8_t> escaped_;  // scratch, reused
   std::vector<std::uint8_t> removal_warned_;  // per body: its first removal was reported
   std::size_t warnings_printed_ = 0;
+  std::unique_ptr<ranks::Host> ranks_;  // null on one rank
+  double skin_ = 0.0;                   // how far a particle may move before the halos are rebuilt, m
+  std::vector<Vec3> moved_from_;        // owned positions at the last rebuild
 };
 
 }  // namespace talus

@@ -3,12 +3,14 @@
 // saving and restoring the run state.
 #include "simulation.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
 
 #include "checkpoint.hpp"
+#include "ranks.hpp"
 #include "talus/number_text.hpp"
 #include "output_schedule.hpp"
 #include "talus/error.hpp"
@@ -40,6 +42,7 @@ std::vector<std::string> Simulation::output_series() const {
 
 // On stderr, so that --quiet and a redirected log keep them.
 void Simulation::print_new_warnings() {
+  if (ranks::rank() != 0) return;
   const auto& all = world_.warnings.all();
   for (; warnings_printed_ < all.size(); ++warnings_printed_)
     std::fprintf(stderr, "talus: warning: %s\n", all[warnings_printed_].c_str());
@@ -55,12 +58,19 @@ std::string Simulation::last_output() const {
   return newest + " (t = " + fixed(last_output_time_) + " s)";
 }
 
+// Every rank keeps the schedule; on several ranks the writers run on rank 0
+// over a copy of every particle, gathered once for all the writers due.
 void Simulation::write_due_outputs(bool force) {
-  for (auto& w : writers_) {
+  auto due = [&](const ScheduledWriter& w) {
     const double eps = w.every_steps ? 0.0 : schedule_eps(world_.end_time, w.every);
-    const bool due = w.every_steps ? world_.step >= w.next_step : world_.time >= w.next_time - eps;
-    if (!due && !force) continue;
-    w.writer->write(world_);
+    return force || (w.every_steps ? world_.step >= w.next_step : world_.time >= w.next_time - eps);
+  };
+  if (std::none_of(writers_.begin(), writers_.end(), due)) return;
+  gather_for_writers();
+  for (auto& w : writers_) {
+    if (!due(w)) continue;
+    const double eps = w.every_steps ? 0.0 : schedule_eps(world_.end_time, w.every);
+    if (ranks::rank() == 0) w.writer->write(world_);
     last_output_time_ = world_.time;
     if (w.every_steps) {
       while (w.next_step <= world_.step) w.next_step += w.every_steps;
@@ -68,6 +78,7 @@ void Simulation::write_due_outputs(bool force) {
       w.next_time = next_due(w.next_time, w.every, world_.time, eps);
     }
   }
+  release_after_writers();
 }
 
 void Simulation::write_checkpoint(const std::string& path) const {

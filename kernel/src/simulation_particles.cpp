@@ -15,8 +15,13 @@
 namespace talus {
 
 void Simulation::remove_escaped_particles() {
+  if (flag_escaped_particles() > 0) remove_flagged_particles();
+}
+
+// Halo rows are another rank's to wrap and remove: only the owned ones are looked at.
+std::size_t Simulation::flag_escaped_particles() {
   ParticleStore& fluid = world_.fluid;
-  const std::size_t n = fluid.size();
+  const std::size_t n = fluid.owned_size();
   auto x = fluid.position();
   escaped_.assign(n, 0);
   std::size_t count = 0;
@@ -33,7 +38,14 @@ void Simulation::remove_escaped_particles() {
     }
     count += escaped_[i];
   }
-  if (count == 0) return;
+  return count;
+}
+
+void Simulation::remove_flagged_particles() {
+  ParticleStore& fluid = world_.fluid;
+  const std::size_t n = escaped_.size();
+  if (std::find(escaped_.begin(), escaped_.end(), 1) == escaped_.end()) return;
+  const auto x = fluid.position();
   // The first particle of each body to leave, with where and when.
   removal_warned_.resize(world_.bodies.size(), 0);
   const auto body = fluid.body();
@@ -60,7 +72,7 @@ void Simulation::resort_particles() {
 
 void Simulation::check_finite() const {
   const ParticleStore& f = world_.fluid;
-  const std::size_t n = f.size();
+  const std::size_t n = f.owned_size();
   const auto x = f.position();
   // The start-state fields the stages read (a run-out scene has no pressure).
   const auto u = f.has("velocity") ? f.vector("velocity") : std::span<const Vec3>{};

@@ -115,6 +115,18 @@ void WcsphStage::density_summation(World& world) {
   pairs_total_ += wall_density_passes(world);
 }
 
+// On several MPI ranks the halo rows were moved by their own, partial rates:
+// every field comes from the owners before an evaluation reads it.
+void WcsphStage::refresh_halos(World& world) {
+  Parallel& ranks = world.parallel();
+  if (ranks.ranks() == 1) return;
+  for (ParticleStore* store : {&world.fluid, &world.boundary}) {
+    halo_fields_.clear();
+    for (const FieldInfo& field : store->fields()) halo_fields_.push_back(field.name);
+    ranks.refresh_halo(*store, halo_fields_);
+  }
+}
+
 void WcsphStage::update_pressure(World& world) {
   FluidFields f(world.fluid);
   for (int m : fluid_materials_)
@@ -122,10 +134,13 @@ void WcsphStage::update_pressure(World& world) {
 }
 
 void WcsphStage::compute_rates(World& world) {
+  refresh_halos(world);
   FluidFields f(world.fluid);
   cells_.build(f.x);
   if (density_ == DensityMode::summation) {
     density_summation(world);
+    static const std::string density[] = {"density"};
+    world.parallel().refresh_halo(world.fluid, density);
     update_pressure(world);
   }
   refresh_reciprocals(world);

@@ -131,6 +131,8 @@ void WcsphStage::apparent_viscosity_pass(World& world) {
 #pragma omp parallel for schedule(static) if (n >= 4096)
     for (std::size_t i = 0; i < n; ++i) mu[i] += f.rho[i] * l2 * shear[i];
   }
+  // The bound is over this rank's own particles (halo rows have part of their neighbours).
+  const std::size_t owned = world.fluid.owned_size();
   double nu_max = 0.0;
   if (point_implicit_) {
     // Inertia 1 + dt D_i; the explicit viscous bound then sees nu_i / (1 + dt D_i).
@@ -142,13 +144,16 @@ void WcsphStage::apparent_viscosity_pass(World& world) {
     for (std::size_t i = 0; i < n; ++i) {
       const double nu = mu[i] * inv_rho_[i];
       inertia[i] = 1.0 + dt * 4.0 * nu * std::max(support[i], s_bulk);
-      nu_max = std::max(nu_max, nu / inertia[i]);
+      if (i < owned) nu_max = std::max(nu_max, nu / inertia[i]);
     }
   } else {
 #pragma omp parallel for schedule(static) reduction(max : nu_max) if (n >= 4096)
-    for (std::size_t i = 0; i < n; ++i) nu_max = std::max(nu_max, mu[i] * inv_rho_[i]);
+    for (std::size_t i = 0; i < owned; ++i) nu_max = std::max(nu_max, mu[i] * inv_rho_[i]);
   }
   nu_field_max_ = nu_max;
+  // The force pass reads the neighbours' mu_eff: the halo's from their owners.
+  static const std::string mu_eff[] = {"mu_eff"};
+  world.parallel().refresh_halo(world.fluid, mu_eff);
 }
 
 void WcsphStage::scale_stiff_particles(World& world) {

@@ -231,22 +231,28 @@ bool WcsphStage::rates_current(const World& world) const {
 double WcsphStage::stable_time_step(World& world) {
   // The rates at t^n are computed once, here, and reused by advance().
   if (!rates_current(world)) compute_rates(world);
+  // The bound combines maxima that may sit on different ranks: each is taken over all of them.
+  const std::size_t owned = world.fluid.owned_size();
   const auto a = world.fluid.vector("acceleration");
   const auto c = world.fluid.scalar("sound_speed");
   const auto visc = world.fluid.scalar("visc_rate");
   double a_max = 0.0, c_max = 0.0, visc_max = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : a_max, c_max, visc_max) if (a.size() >= 4096)
-  for (std::size_t i = 0; i < a.size(); ++i) {
+#pragma omp parallel for schedule(static) reduction(max : a_max, c_max, visc_max) if (owned >= 4096)
+  for (std::size_t i = 0; i < owned; ++i) {
     a_max = std::max(a_max, norm2(a[i]));
     c_max = std::max(c_max, c[i]);
     visc_max = std::max(visc_max, visc[i]);
   }
-  a_max = std::sqrt(a_max);
+  const Parallel& ranks = world.parallel();
+  a_max = std::sqrt(ranks.max(a_max));
+  c_max = ranks.max(c_max);
+  visc_max = ranks.max(visc_max);
   double dt = std::numeric_limits<double>::infinity();
   if (a_max > 0.0) dt = std::min(dt, std::sqrt(h_ / a_max));
   c_max = std::max(c_max, c0_max_);
   dt = std::min(dt, h_ / (c_max + h_ * visc_max));
-  const double nu_max = per_particle_viscosity_ ? nu_field_max_ : nu_max_;  // max mu_eff/rho with three passes
+  // max mu_eff/rho with three passes
+  const double nu_max = per_particle_viscosity_ ? ranks.max(nu_field_max_) : nu_max_;
   if (nu_max > 0.0) dt = std::min(dt, h_ * h_ / nu_max);
   dt *= courant_;
   for (const sph::SphBoundary* wall : walls_) dt = std::min(dt, wall->stable_time_step(world));
@@ -255,7 +261,8 @@ double WcsphStage::stable_time_step(World& world) {
 }
 
 void WcsphStage::advance(World& world, double dt) {
-  if (world.fluid.size() == 0) return;
+  // On several ranks one with no fluid still takes part in the halo exchanges.
+  if (world.fluid.size() == 0 && world.parallel().ranks() == 1) return;
   if (!rates_current(world)) compute_rates(world);
   switch (integrator_) {
     case Integrator::euler: step_euler(world, dt); break;
@@ -265,7 +272,7 @@ void WcsphStage::advance(World& world, double dt) {
   }
   for (sph::SphBoundary* wall : walls_) wall->hold_fluid(world, world.time + dt);
   rates_valid_ = false;  // the state moved; the next step evaluates again
-  const double deviation = max_density_deviation(world);
+  const double deviation = world.parallel().max(max_density_deviation(world));  // every rank's worst
   if (deviation > worst_deviation_ || !std::isfinite(deviation)) {
     worst_deviation_ = deviation;
     worst_deviation_time_ = world.time + dt;
@@ -275,9 +282,10 @@ void WcsphStage::advance(World& world, double dt) {
 double WcsphStage::max_density_deviation(const World& world) const {
   const auto rho = world.fluid.scalar("density");
   const auto mat = world.fluid.material();
+  const std::size_t owned = world.fluid.owned_size();
   double dev = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : dev) if (rho.size() >= 4096)
-  for (std::size_t i = 0; i < rho.size(); ++i) {
+#pragma omp parallel for schedule(static) reduction(max : dev) if (owned >= 4096)
+  for (std::size_t i = 0; i < owned; ++i) {
     const double rho0 = material_rho0_[mat[i]];
     dev = std::max(dev, std::abs(rho[i] / rho0 - 1.0));
   }

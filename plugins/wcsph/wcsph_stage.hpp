@@ -19,6 +19,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "talus/neighbour_grid.hpp"
@@ -69,6 +70,7 @@ class WcsphStage final : public Stage {
 
  private:
   void update_pressure(World& world);
+  void refresh_halos(World& world);
   // Three-pass non-Newtonian viscosity (DESIGN.md), only when per_particle_viscosity_:
   // pass 1 shear rate, pass 2 mu_eff (one rheology batch call per material, plus
   // the Smagorinsky eddy viscosity); pass 3 is the force pass reading mu_eff.
@@ -125,6 +127,7 @@ class WcsphStage final : public Stage {
   Vec3 period_;  // domain length on periodic axes (lever arms of rigid-body wall sets)
   std::vector<double> inv_rho_, rho_over_c2_;  // scratch, refilled every evaluation (grow only)
   sph::ReactionBuffers reactions_;             // the force pass's per-thread reactions (grow only)
+  std::vector<std::string> halo_fields_;       // scratch: the fields refresh_halos() sends
 
   // Step state.
   std::uint64_t verlet_counter_ = 0;

@@ -6,11 +6,31 @@
 #include <string>
 
 #include "commands.hpp"
+#include "ranks.hpp"
 #include "talus/build_info.hpp"
 #include "talus/error.hpp"
 
+namespace {
+
+// On several MPI ranks an error on one must end them all, or the others wait
+// for it forever; its message names the rank.
+int finish(int code, const char* message) {
+  using namespace talus;
+  if (ranks::count() > 1) {
+    if (message) std::fprintf(stderr, "talus: rank %d of %d: %s\n", ranks::rank(), ranks::count(), message);
+    if (code != 0) ranks::abort_all(code);
+  } else if (message) {
+    std::fprintf(stderr, "%s\n", message);
+  }
+  ranks::stop();
+  return code;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace talus;
+  ranks::start(&argc, &argv);
   cli::Args args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     std::fputs(cli::usage().c_str(), stdout);
@@ -23,40 +43,34 @@ int main(int argc, char** argv) {
   const std::string command = args[0];
   args.erase(args.begin());
   try {
-    if (command == "run") return cli::run(args);
-    if (command == "validate") return cli::validate(args);
-    if (command == "plan") return cli::plan(args);
-    if (command == "study") return cli::study(args);
-    if (command == "plugins") return cli::plugins(args);
-    if (command == "doc") return cli::doc(args);
-    if (command == "example") return cli::example(args);
-    if (command == "schema") return cli::schema(args);
-    if (command == "manifest") return cli::manifest(args);
-    std::fprintf(stderr, "error: unknown command '%s'\n%s", command.c_str(), cli::usage().c_str());
-    return 2;
+    if (command == "run") return finish(cli::run(args), nullptr);
+    if (command == "validate") return finish(cli::validate(args), nullptr);
+    if (command == "plan") return finish(cli::plan(args), nullptr);
+    if (command == "study") return finish(cli::study(args), nullptr);
+    if (command == "plugins") return finish(cli::plugins(args), nullptr);
+    if (command == "doc") return finish(cli::doc(args), nullptr);
+    if (command == "example") return finish(cli::example(args), nullptr);
+    if (command == "schema") return finish(cli::schema(args), nullptr);
+    if (command == "manifest") return finish(cli::manifest(args), nullptr);
+    return finish(2, ("error: unknown command '" + command + "'\n" + cli::usage()).c_str());
   } catch (const InputError& e) {
-    std::fprintf(stderr, "%s\n", e.what());
-    return 2;
+    return finish(2, e.what());
   } catch (const RunError& e) {
     // Stages throw what went wrong; the prefix marks it as the run's end.
     const std::string what = e.what();
-    std::fprintf(stderr, "%s%s\n", what.starts_with("error: ") ? "" : "error: ", what.c_str());
-    return 1;
+    return finish(1, ((what.starts_with("error: ") ? "" : "error: ") + what).c_str());
   } catch (const std::bad_alloc&) {
     // Past the up-front estimate (or with --allow-large): still a scene too large for this machine.
-    std::fprintf(stderr,
-                 "error: talus %s: out of memory (std::bad_alloc): the scene needs more memory than this machine "
-                 "could give.\n       `talus plan SCENE` shows its estimate; coarsen dp or shrink the domain.\n",
-                 command.c_str());
-    return 2;
+    const std::string what = "error: talus " + command +
+                             ": out of memory (std::bad_alloc): the scene needs more memory than this machine could "
+                             "give.\n       `talus plan SCENE` shows its estimate; coarsen dp or shrink the domain.";
+    return finish(2, what.c_str());
   } catch (const std::length_error& e) {
-    std::fprintf(stderr,
-                 "error: talus %s: a size beyond what this machine can hold (std::length_error: %s).\n"
-                 "       `talus plan SCENE` shows its estimate; coarsen dp or shrink the domain.\n",
-                 command.c_str(), e.what());
-    return 2;
+    const std::string what = "error: talus " + command +
+                             ": a size beyond what this machine can hold (std::length_error: " + e.what() +
+                             ").\n       `talus plan SCENE` shows its estimate; coarsen dp or shrink the domain.";
+    return finish(2, what.c_str());
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 1;
+    return finish(1, (std::string("error: ") + e.what()).c_str());
   }
 }

@@ -1,0 +1,41 @@
+// Whether this process is one of several MPI ranks of one run, and what the
+// host asks of the ranks (mpi/rank_exchange.hpp does it). A build without MPI,
+// or a process not started by mpirun, is the single rank 0 of 1.
+#pragma once
+
+#include <memory>
+
+#include "talus/config.hpp"
+#include "talus/parallel.hpp"
+#include "talus/world.hpp"
+
+namespace talus::ranks {
+
+// MPI_Init when mpirun (or mpiexec) started this process; nothing otherwise.
+TALUS_API void start(int* argc, char*** argv);
+TALUS_API void stop();
+TALUS_API int rank();
+TALUS_API int count();
+// After an error on one rank: stops every rank of the run with this exit code.
+[[noreturn]] TALUS_API void abort_all(int code);
+
+// The host's side of a run on several ranks: World::parallel() for the stages,
+// and the moves between steps.
+class Host : public Parallel {
+ public:
+  // Keeps this rank's share of the world every rank built whole, and makes the first cuts.
+  virtual void distribute(World& world) = 0;
+  virtual void drop_halos(World& world) = 0;
+  // Moves each particle to the owner of its place.
+  virtual void migrate(World& world) = 0;
+  virtual void build_halos(World& world) = 0;
+  // Rank 0 holds a copy of every particle (for the writers) until release.
+  virtual void gather_to_root(World& world) = 0;
+  virtual void release_gathered(World& world) = 0;
+};
+
+// halo_reach: the search radius plus the skin particles may move before the
+// next rebuild. Null on a single rank.
+TALUS_API std::unique_ptr<Host> make_host(const World& world, double cell, double halo_reach);
+
+}  // namespace talus::ranks

@@ -1,0 +1,86 @@
+// A run spread over MPI ranks (`mpirun -np N talus run SCENE`): every rank
+// builds the whole world from the scene, keeps its share, and between steps
+// moves particles to their owners and rebuilds the halos when a particle has
+// moved half the skin, one left the domain, or the re-sort is due. Writers run
+// on rank 0 over a gathered copy of every particle.
+#include <algorithm>
+#include <cmath>
+
+#include "ranks.hpp"
+#include "simulation.hpp"
+#include "talus/blocks.hpp"
+#include "talus/error.hpp"
+#include "talus/periodic.hpp"
+
+namespace talus {
+
+namespace {
+
+// What runs on several ranks so far; the rest is refused before anything is written.
+std::string unsupported_on_ranks(const Scene& scene, const World& world, bool restart) {
+  for (std::size_t b = 0; b < world.bodies.size(); ++b)
+    if (world.bodies[b].kind != BodyKind::fluid)
+      return "/bodies: body '" + world.bodies[b].name + "' is a " + to_string(world.bodies[b].kind) +
+             " body; walls and blocks";
+  if (scene.values.has("checkpoint")) {
+    const ParamValues& c = scene.values.object("checkpoint");
+    if (c.has("every") || c.has("every_minutes")) return "/checkpoint: checkpoints";
+  }
+  if (restart) return "--restart: a restart";
+  return {};
+}
+
+}  // namespace
+
+void Simulation::spread_over_ranks(bool restart) {
+  if (ranks::count() < 2) return;
+  const std::string what = unsupported_on_ranks(scene_, world_, restart);
+  if (!what.empty())
+    throw InputError("error: " + scene_.path + ": " + what + " do not run on several MPI ranks yet (" +
+                     std::to_string(ranks::count()) + " were started); run this scene on one process");
+  const double radius = world_.kernel.support_radius();
+  skin_ = world_.dp;
+  ranks_ = ranks::make_host(world_, radius, radius + skin_);
+  world_.set_parallel(ranks_.get());
+  ranks_->distribute(world_);
+  rebuild_ranks();
+}
+
+void Simulation::rebuild_ranks() {
+  ranks_->drop_halos(world_);
+  ranks_->migrate(world_);
+  resort_particles();
+  ranks_->build_halos(world_);
+  world_.refresh_material_index();
+  const auto x = world_.fluid.position();
+  moved_from_.assign(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(world_.fluid.owned_size()));
+}
+
+void Simulation::rank_upkeep(bool resort_due) {
+  const std::uint64_t escaped = ranks_->sum(static_cast<std::uint64_t>(flag_escaped_particles()));
+  const auto x = world_.fluid.position();
+  Vec3 period{};
+  for (int a = 0; a < 3; ++a)
+    if (world_.periodic[a]) period[a] = world_.hi[a] - world_.lo[a];
+  double moved = 0.0;
+  for (std::size_t i = 0; i < moved_from_.size(); ++i)
+    moved = std::max(moved, norm2(minimum_image(x[i] - moved_from_[i], period)));
+  moved = ranks_->max(std::sqrt(moved));
+  if (escaped == 0 && !resort_due && moved < 0.5 * skin_) return;
+  ranks_->drop_halos(world_);
+  remove_flagged_particles();
+  rebuild_ranks();
+}
+
+void Simulation::gather_for_writers() {
+  if (ranks_) ranks_->gather_to_root(world_);
+}
+
+void Simulation::release_after_writers() {
+  if (!ranks_) return;
+  ranks_->release_gathered(world_);
+  ranks_->build_halos(world_);
+  world_.refresh_material_index();
+}
+
+}  // namespace talus
