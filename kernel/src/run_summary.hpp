@@ -16,6 +16,15 @@ class Stage;
 class World;
 struct ScheduledWriter;
 
+// A run on several MPI ranks: how evenly the work fell and what the halos cost.
+struct RankFigures {
+  int count = 1;
+  double imbalance = 1.0;   // the busiest rank's fluid particle-steps over the mean
+  double halo_share = 0.0;  // halo rows per owned row, over all ranks and rebuilds
+  std::uint64_t rebuilds = 0;  // owners and halos rebuilt (re-sort, escape, skin)
+  double peak_memory_mib_max = 0.0;  // the largest rank's
+};
+
 // What the summary reports; the references are the simulation's own.
 struct RunSummary {
   const std::string& scene_path;
@@ -30,6 +39,7 @@ struct RunSummary {
   double wall_seconds;  // from the first step's set-up on (the scene's own set-up is in phases.setup)
   double peak_memory_mib;
   const PhaseTimes& phases;
+  RankFigures ranks;
 };
 
 // The peak resident memory of this process so far, MiB.

@@ -213,7 +213,10 @@ int Simulation::run(const RunOptions& options) {
   progress.finish();
   phases_.host += since_start_.lap();
   if (last_output_time_ < world_.time) write_due_outputs(true);
+  RankFigures rank_figures;
+  rank_figures.peak_memory_mib_max = peak_memory_mib();
   if (ranks_) {  // the summary counts every rank's particles and steps
+    rank_figures = figures_over_ranks(particle_steps);
     particle_steps = ranks_->sum(static_cast<std::uint64_t>(particle_steps));
     wall_particle_steps = ranks_->sum(static_cast<std::uint64_t>(wall_particle_steps));
     world_.removed = ranks_->sum(static_cast<std::uint64_t>(world_.removed));
@@ -230,7 +233,7 @@ int Simulation::run(const RunOptions& options) {
   const double wall = progress.elapsed();
   const RunSummary summary{scene_.path, world_, stages_, stage_names_, writers_, finish_lines,
                            world_.step - first_step, particle_steps, wall_particle_steps, wall, peak_memory_mib(),
-                           phases_};
+                           phases_, rank_figures};
   if (!root) return 0;
   if (!options.summary_file.empty()) write_summary_file(summary, options.summary_file);
   if (!options.quiet) print_summary(summary);

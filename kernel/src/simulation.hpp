@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "phase_times.hpp"
+#include "run_summary.hpp"
 #include "scene.hpp"
 #include "talus/world.hpp"
 
@@ -88,6 +89,7 @@ class TALUS_API Simulation {
   void rank_upkeep(bool resort_due);
   void gather_for_writers();
   void release_after_writers();
+  RankFigures figures_over_ranks(std::uint64_t own_particle_steps) const;
   void print_new_warnings();
   void resort_particles();
   void check_finite() const;
@@ -113,6 +115,7 @@ class TALUS_API Simulation {
   std::unique_ptr<ranks::Host> ranks_;  // null on one rank
   double skin_ = 0.0;                   // how far a particle may move before the halos are rebuilt, m
   std::vector<Vec3> moved_from_;        // owned positions at the last rebuild
+  std::uint64_t rebuilds_ = 0, owned_rows_seen_ = 0, halo_rows_seen_ = 0;  // this rank's, at each rebuild
 };
 
 }  // namespace talus

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "ranks.hpp"
+#include "run_summary.hpp"
 #include "simulation.hpp"
 #include "talus/blocks.hpp"
 #include "talus/error.hpp"
@@ -52,6 +53,9 @@ void Simulation::rebuild_ranks() {
   resort_particles();
   ranks_->build_halos(world_);
   world_.refresh_material_index();
+  ++rebuilds_;
+  owned_rows_seen_ += world_.fluid.owned_size() + world_.boundary.owned_size();
+  halo_rows_seen_ += world_.fluid.halo_size() + world_.boundary.halo_size();
   const auto x = world_.fluid.position();
   moved_from_.assign(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(world_.fluid.owned_size()));
 }
@@ -70,6 +74,19 @@ void Simulation::rank_upkeep(bool resort_due) {
   ranks_->drop_halos(world_);
   remove_flagged_particles();
   rebuild_ranks();
+}
+
+RankFigures Simulation::figures_over_ranks(std::uint64_t own_particle_steps) const {
+  RankFigures f;
+  f.count = ranks_->ranks();
+  const double total = static_cast<double>(ranks_->sum(own_particle_steps));
+  const double busiest = ranks_->max(static_cast<double>(own_particle_steps));
+  f.imbalance = total > 0 ? busiest * f.count / total : 1.0;
+  const double owned = static_cast<double>(ranks_->sum(owned_rows_seen_));
+  f.halo_share = owned > 0 ? static_cast<double>(ranks_->sum(halo_rows_seen_)) / owned : 0.0;
+  f.rebuilds = rebuilds_;
+  f.peak_memory_mib_max = ranks_->max(peak_memory_mib());
+  return f;
 }
 
 void Simulation::gather_for_writers() {
