@@ -19,6 +19,21 @@ int message_size(std::size_t bytes) {
   return static_cast<int>(bytes);
 }
 
+// Appends the rows of every rank's packet (in[at[r], at[r] + bytes[r])) to the
+// store in rank order; they keep the ids they travelled with.
+void append_packets(ParticleStore& store, std::span<const std::string> fields, std::span<const std::byte> in,
+                    std::span<const int> bytes, std::span<const int> at) {
+  const std::size_t per_row = row_bytes(store, fields);
+  const std::uint64_t next_id = store.next_id();
+  std::size_t first = store.append(in.size() / per_row);
+  store.set_next_id(next_id);
+  for (std::size_t r = 0; r < bytes.size(); ++r) {
+    const auto n = static_cast<std::size_t>(bytes[r]);
+    unpack_rows(store, fields, in.subspan(static_cast<std::size_t>(at[r]), n), first, n / per_row);
+    first += n / per_row;
+  }
+}
+
 }  // namespace
 
 RankExchange::RankExchange(MPI_Comm comm, const ExchangeSettings& settings)
@@ -133,17 +148,7 @@ void RankExchange::move(ParticleStore& store, std::span<const int> destination) 
                 receive_at.data(), MPI_BYTE, comm_);
 
   store.remove_if(leaves);
-  const std::size_t per_row = row_bytes(store, fields);
-  const std::uint64_t next_id = store.next_id();  // arriving particles keep their ids
-  std::size_t first = store.append(total / per_row);
-  store.set_next_id(next_id);
-  for (std::size_t r = 0; r < nranks(); ++r) {
-    const auto bytes = static_cast<std::size_t>(receive_bytes[r]);
-    const std::size_t count = bytes / per_row;
-    const auto packet = std::span<const std::byte>(in).subspan(static_cast<std::size_t>(receive_at[r]), bytes);
-    unpack_rows(store, fields, packet, first, count);
-    first += count;
-  }
+  append_packets(store, fields, in, receive_bytes, receive_at);
 }
 
 void RankExchange::ranks_near(const Vec3& x, double w, std::vector<int>& out) const {
@@ -228,17 +233,7 @@ void RankExchange::gather_to_root(std::span<ParticleStore* const> stores) {
     }
     std::vector<std::byte> in(rank_ == 0 ? total : 0);
     MPI_Gatherv(mine.data(), bytes, MPI_BYTE, in.data(), counts.data(), at.data(), MPI_BYTE, 0, comm_);
-    if (rank_ != 0) continue;
-    const std::size_t per_row = row_bytes(*store, fields);
-    const std::uint64_t next_id = store->next_id();
-    std::size_t first = store->append(total / per_row);
-    store->set_next_id(next_id);
-    for (std::size_t r = 1; r < nranks(); ++r) {
-      const auto n = static_cast<std::size_t>(counts[r]);
-      const auto packet = std::span<const std::byte>(in).subspan(static_cast<std::size_t>(at[r]), n);
-      unpack_rows(*store, fields, packet, first, n / per_row);
-      first += n / per_row;
-    }
+    if (rank_ == 0) append_packets(*store, fields, in, counts, at);  // rank 0's own packet is empty
   }
 }
 
@@ -274,15 +269,18 @@ void RankExchange::refresh_halo(ParticleStore& store, std::span<const std::strin
   if (plan == plans_.end()) return;  // a store without a halo (a rank with no neighbour)
   const std::size_t per_row = row_bytes(store, fields);
   const std::size_t n = plan->neighbours.size();
-  std::vector<std::vector<std::byte>> packets(n), inbox(n);
+  // The buffers keep their capacity from one refresh to the next.
+  packets_.resize(std::max(packets_.size(), n));
+  inbox_.resize(std::max(inbox_.size(), n));
   for (std::size_t k = 0; k < n; ++k) {
-    pack_rows(store, fields, plan->send[k], packets[k]);
-    inbox[k].resize(plan->receive[k] * per_row);
+    packets_[k].clear();
+    pack_rows(store, fields, plan->send[k], packets_[k]);
+    inbox_[k].resize(plan->receive[k] * per_row);
   }
-  swap_packets(plan->neighbours, packets, inbox);
+  swap_packets(plan->neighbours, std::span(packets_).first(n), std::span(inbox_).first(n));
   std::size_t first = store.owned_size();
   for (std::size_t k = 0; k < n; ++k) {
-    unpack_rows(store, fields, inbox[k], first, plan->receive[k]);
+    unpack_rows(store, fields, inbox_[k], first, plan->receive[k]);
     first += plan->receive[k];
   }
 }

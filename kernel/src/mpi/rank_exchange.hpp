@@ -85,6 +85,7 @@ class TALUS_API RankExchange final : public Parallel {
   ExchangeSettings settings_;
   ZoltanCuts cuts_;
   std::vector<HaloPlan> plans_;
+  std::vector<std::vector<std::byte>> packets_, inbox_;  // refresh_halo's, per neighbour (grow only)
   std::vector<std::size_t> own_before_gather_;  // rank 0: each store's own particles while gathered
 };
 
