@@ -108,12 +108,8 @@ int Simulation::run(const RunOptions& options) {
   const StopSignals stop_signals;
 
   Progress progress(options.quiet || !root, options.progress_seconds);
-  auto fluid_count = [&] {  // over every rank
-    const std::size_t own = world_.fluid.owned_size();
-    return ranks_ ? static_cast<std::size_t>(ranks_->sum(static_cast<std::uint64_t>(own))) : own;
-  };
-  auto wall_count = [&] {
-    const std::size_t own = world_.boundary.owned_size();
+  auto count_over_ranks = [&](const ParticleStore& store) {
+    const std::size_t own = store.owned_size();
     return ranks_ ? static_cast<std::size_t>(ranks_->sum(static_cast<std::uint64_t>(own))) : own;
   };
   const std::uint64_t first_step = world_.step;
@@ -123,7 +119,7 @@ int Simulation::run(const RunOptions& options) {
   phases_.setup += since_start_.lap();
   if (options.restart.empty()) write_due_outputs(true);
   phases_.outputs += since_start_.lap();
-  const std::size_t fluid_at_start = fluid_count(), walls_at_start = wall_count();
+  const std::size_t fluid_at_start = count_over_ranks(world_.fluid), walls_at_start = count_over_ranks(world_.boundary);
   if (!options.quiet && root)
     std::printf("talus: running %s%s: %zu fluid particles, %zu wall particles%s, to t = %s s; output in %s\n",
                 scene_.path.c_str(),
@@ -177,7 +173,7 @@ int Simulation::run(const RunOptions& options) {
           const std::string st = stages_[i]->status(world_);
           if (!st.empty()) status += (status.empty() ? "" : "  ") + stage_names_[i] + ": " + st;
         }
-      progress.update(world_.time, world_.end_time, dt, world_.step, ranks_ ? fluid_count() : world_.fluid.size(),
+      progress.update(world_.time, world_.end_time, dt, world_.step, ranks_ ? fluid_over_ranks_ : world_.fluid.size(),
                       status);
       if (const int sig = stop_signals.caught()) {
         if (ranks_)

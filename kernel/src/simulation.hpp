@@ -115,6 +115,7 @@ class TALUS_API Simulation {
   std::unique_ptr<ranks::Host> ranks_;  // null on one rank
   double skin_ = 0.0;                   // how far a particle may move before the halos are rebuilt, m
   std::vector<Vec3> moved_from_;        // owned positions at the last rebuild
+  std::size_t fluid_over_ranks_ = 0;    // fluid particles on all ranks, counted at the last rebuild
   std::uint64_t rebuilds_ = 0, owned_rows_seen_ = 0, halo_rows_seen_ = 0;  // this rank's, at each rebuild
 };
 

@@ -54,6 +54,7 @@ void Simulation::rebuild_ranks() {
   ranks_->build_halos(world_);
   world_.refresh_material_index();
   ++rebuilds_;
+  fluid_over_ranks_ = static_cast<std::size_t>(ranks_->sum(static_cast<std::uint64_t>(world_.fluid.owned_size())));
   owned_rows_seen_ += world_.fluid.owned_size() + world_.boundary.owned_size();
   halo_rows_seen_ += world_.fluid.halo_size() + world_.boundary.halo_size();
   const auto x = world_.fluid.position();
