@@ -216,6 +216,7 @@ int Simulation::run(const RunOptions& options) {
     particle_steps = ranks_->sum(static_cast<std::uint64_t>(particle_steps));
     wall_particle_steps = ranks_->sum(static_cast<std::uint64_t>(wall_particle_steps));
     world_.removed = ranks_->sum(static_cast<std::uint64_t>(world_.removed));
+    world_.wall_crossings = ranks_->sum(static_cast<std::uint64_t>(world_.wall_crossings));
     gather_for_writers();
   }
   if (root)

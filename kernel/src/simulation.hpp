@@ -89,6 +89,7 @@ class TALUS_API Simulation {
   void rank_upkeep(bool resort_due);
   void gather_for_writers();
   void release_after_writers();
+  void wall_rows_moved();  // after the ranks moved rows: the boundary models re-lay their particles
   RankFigures figures_over_ranks(std::uint64_t own_particle_steps) const;
   void print_new_warnings();
   void resort_particles();
@@ -114,7 +115,7 @@ class TALUS_API Simulation {
   std::size_t warnings_printed_ = 0;
   std::unique_ptr<ranks::Host> ranks_;  // null on one rank
   double skin_ = 0.0;                   // how far a particle may move before the halos are rebuilt, m
-  std::vector<Vec3> moved_from_;        // owned positions at the last rebuild
+  std::vector<Vec3> moved_from_;        // owned positions at the last rebuild, fluid then walls
   std::size_t fluid_over_ranks_ = 0;    // fluid particles on all ranks, counted at the last rebuild
   std::uint64_t rebuilds_ = 0, owned_rows_seen_ = 0, halo_rows_seen_ = 0;  // this rank's, at each rebuild
 };

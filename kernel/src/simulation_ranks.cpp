@@ -5,11 +5,14 @@
 // on rank 0 over a gathered copy of every particle.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include "ranks.hpp"
 #include "run_summary.hpp"
 #include "simulation.hpp"
 #include "talus/blocks.hpp"
+#include "talus/boundary.hpp"
 #include "talus/error.hpp"
 #include "talus/periodic.hpp"
 
@@ -19,10 +22,27 @@ namespace {
 
 // What runs on several ranks so far; the rest is refused before anything is written.
 std::string unsupported_on_ranks(const Scene& scene, const World& world, bool restart) {
-  for (std::size_t b = 0; b < world.bodies.size(); ++b)
-    if (world.bodies[b].kind != BodyKind::fluid)
-      return "/bodies: body '" + world.bodies[b].name + "' is a " + to_string(world.bodies[b].kind) +
-             " body; walls and blocks";
+  for (std::size_t b = 0; b < world.bodies.size(); ++b) {
+    const Body& body = world.bodies[b];
+    if (body.kind == BodyKind::block)
+      return "/bodies/" + std::to_string(b) + ": body '" + body.name + "' is a block body; blocks";
+    if (body.kind == BodyKind::wall && body.boundary)
+      if (const std::string why = body.boundary->why_not_on_ranks(); !why.empty())
+        return "/bodies/" + std::to_string(b) + "/boundary: wall '" + body.name + "': " + why + "; such walls";
+  }
+  // Rows of world.boundary move between ranks without regard to their model:
+  // one model must hold them all to rebuild its row range (Boundary::rows_moved).
+  std::vector<char> has_rows(world.bodies.size(), 0);
+  for (const std::int32_t b : world.boundary.body()) has_rows[b] = 1;
+  const Body* holder = nullptr;
+  for (std::size_t b = 0; b < world.bodies.size(); ++b) {
+    if (!has_rows[b] || !world.bodies[b].boundary) continue;
+    if (!holder) holder = &world.bodies[b];
+    else if (world.bodies[b].boundary != holder->boundary)
+      return "/bodies/" + std::to_string(b) + "/boundary: wall '" + world.bodies[b].name + "' has another boundary " +
+             "model or other parameters than wall '" + holder->name + "', so its wall particles belong to a " +
+             "second model; walls whose particles belong to several models";
+  }
   if (scene.values.has("checkpoint")) {
     const ParamValues& c = scene.values.object("checkpoint");
     if (c.has("every") || c.has("every_minutes")) return "/checkpoint: checkpoints";
@@ -52,24 +72,31 @@ void Simulation::rebuild_ranks() {
   ranks_->migrate(world_);
   resort_particles();
   ranks_->build_halos(world_);
-  world_.refresh_material_index();
+  wall_rows_moved();
   ++rebuilds_;
   fluid_over_ranks_ = static_cast<std::size_t>(ranks_->sum(static_cast<std::uint64_t>(world_.fluid.owned_size())));
   owned_rows_seen_ += world_.fluid.owned_size() + world_.boundary.owned_size();
   halo_rows_seen_ += world_.fluid.halo_size() + world_.boundary.halo_size();
-  const auto x = world_.fluid.position();
-  moved_from_.assign(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(world_.fluid.owned_size()));
+  // Wall particles with a prescribed motion move too: their halo copies must keep up.
+  moved_from_.clear();
+  for (const ParticleStore* store : {&world_.fluid, &world_.boundary}) {
+    const auto x = store->position();
+    moved_from_.insert(moved_from_.end(), x.begin(), x.begin() + static_cast<std::ptrdiff_t>(store->owned_size()));
+  }
 }
 
 void Simulation::rank_upkeep(bool resort_due) {
   const std::uint64_t escaped = ranks_->sum(static_cast<std::uint64_t>(flag_escaped_particles()));
-  const auto x = world_.fluid.position();
   Vec3 period{};
   for (int a = 0; a < 3; ++a)
     if (world_.periodic[a]) period[a] = world_.hi[a] - world_.lo[a];
   double moved = 0.0;
-  for (std::size_t i = 0; i < moved_from_.size(); ++i)
-    moved = std::max(moved, norm2(minimum_image(x[i] - moved_from_[i], period)));
+  std::size_t at = 0;  // moved_from_: the fluid's owned rows, then the walls'
+  for (const ParticleStore* store : {&world_.fluid, &world_.boundary}) {
+    const auto x = store->position();
+    for (std::size_t i = 0; i < store->owned_size(); ++i, ++at)
+      moved = std::max(moved, norm2(minimum_image(x[i] - moved_from_[at], period)));
+  }
   moved = ranks_->max(std::sqrt(moved));
   if (escaped == 0 && !resort_due && moved < 0.5 * skin_) return;
   ranks_->drop_halos(world_);
@@ -98,7 +125,17 @@ void Simulation::release_after_writers() {
   if (!ranks_) return;
   ranks_->release_gathered(world_);
   ranks_->build_halos(world_);
+  wall_rows_moved();
+}
+
+void Simulation::wall_rows_moved() {
   world_.refresh_material_index();
+  std::vector<Boundary*> told;
+  for (const Body& body : world_.bodies)
+    if (body.boundary && std::find(told.begin(), told.end(), body.boundary) == told.end()) {
+      body.boundary->rows_moved(world_);
+      told.push_back(body.boundary);
+    }
 }
 
 }  // namespace talus

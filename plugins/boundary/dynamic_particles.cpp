@@ -7,6 +7,7 @@
 #include "talus/eos.hpp"
 #include "talus/error.hpp"
 #include "talus/geometry.hpp"
+#include "talus/parallel.hpp"
 #include "talus/periodic.hpp"
 #include "talus/sph/fluid_terms.hpp"
 #include "talus/sph/pair_loop.hpp"
@@ -26,6 +27,9 @@ using sph::wall_density_rate;
 using sph::wall_density_n;
 
 const FieldInfo wall_position0{"position0", FieldType::vector, "m", false, true};
+// v_b* of a wall particle, refilled by every fill_wall_state(); a store field so
+// that it reaches the halo copies on other MPI ranks.
+const FieldInfo wall_viscous_velocity{"viscous_velocity", FieldType::vector, "m/s", false, false};
 
 // The wall store's fields over this model's particles [first, first + count).
 struct WallFields {
@@ -185,36 +189,69 @@ void DynamicParticles::setup(World& world, std::span<const int> bodies) {
 void DynamicParticles::bind(World& world, const sph::FluidSettings& settings) {
   settings_ = settings;
   mirror_ = slip_ == sph::WallSlip::free_slip || (no_slip_ == NoSlip::extrapolated && settings.viscous_velocity);
-  noslip_v_.assign(mirror_ ? count_ : 0, Vec3{});
+  if (mirror_) world.boundary.require(wall_viscous_velocity);
   WallFields w(world.boundary, first_, count_);
   if (method_ == Method::mdbc) {
     ghost_ = ghost0_;
     place_ghosts(world, world.time);
   }
-  // Per-material index lists for the EOS batch calls (indices in world.boundary).
-  by_material_.assign(world.materials.size(), {});
   rho0_of_material_.assign(world.materials.size(), 0.0);
   for (std::size_t m = 0; m < world.materials.size(); ++m) rho0_of_material_[m] = world.materials[m].density;
-  for (std::size_t k = 0; k < count_; ++k) by_material_[w.mat[k]].push_back(static_cast<Index>(first_ + k));
+  // Moving walls start with their prescribed velocity (an impulsively started lid moves from the first step).
+  if (moves_)
+    for (std::size_t k = 0; k < count_; ++k) w.v[k] = motion_[slot_of_body_[w.body[k]]].velocity(w.x0[k], world.time);
+  lay_out(world);
+  initial_density(world);
+  update_pressure(world);
+}
 
+void DynamicParticles::lay_out(World& world) {
+  WallFields w(world.boundary, first_, count_);
+  // Per-material index lists for the EOS batch calls (indices in world.boundary).
+  by_material_.assign(world.materials.size(), {});
+  for (std::size_t k = 0; k < count_; ++k) by_material_[w.mat[k]].push_back(static_cast<Index>(first_ + k));
   // Cell list over the fluid's bounds and the walls' own (walls may sit
   // outside the domain); moving walls are clamped into the edge cells.
-  Vec3 lo = settings.lo, hi = settings.hi;
+  Vec3 lo = settings_.lo, hi = settings_.hi;
   for (const Vec3& p : w.x)
     for (int a = 0; a < world.dim; ++a) {
       lo[a] = std::min(lo[a], p[a]);
       hi[a] = std::max(hi[a], p[a] + 1e-9);
     }
-  // Moving walls start with their prescribed velocity (an impulsively started lid moves from the first step).
-  if (moves_)
-    for (std::size_t k = 0; k < count_; ++k) w.v[k] = motion_[slot_of_body_[w.body[k]]].velocity(w.x0[k], world.time);
-  const double radius = settings.kernel->support_radius();
-  cells_.configure(world.dim, lo, hi, radius, world.periodic);
+  cells_.configure(world.dim, lo, hi, settings_.kernel->support_radius(), world.periodic);
   cells_.build(w.x);
-  initial_density(world);
-  update_pressure(world);
   inv_rho_.assign(count_, 0.0);
   refresh_set(world);
+}
+
+// DBC needs only the fluid within one support radius of each wall particle,
+// which the halo holds. mDBC's ghost nodes lie up to two wall depths inside
+// the fluid, and their own neighbours one radius further: beyond the halo.
+std::string DynamicParticles::why_not_on_ranks() const {
+  if (method_ == Method::mdbc)
+    return "\"method\": \"mdbc\" needs the fluid around ghost nodes up to three support radii from their wall "
+           "particle, beyond the halo of one radius";
+  return {};
+}
+
+// On several ranks this model holds every wall particle of the store (owned
+// rows, then halo rows), and the rows came in a new order.
+void DynamicParticles::rows_moved(World& world) {
+  const ParticleStore& s = world.boundary;
+  const auto body = s.body();
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (slot_of_body_[body[i]] < 0)
+      throw RunError("error: wall '" + world.bodies[body[i]].name +
+                     "' has another boundary model than dynamic_particles; on several MPI ranks one "
+                     "dynamic_particles model must hold every wall particle");
+  first_ = 0;
+  count_ = s.size();
+  lay_out(world);
+}
+
+std::span<Vec3> DynamicParticles::viscous_velocity(World& world) const {
+  if (!mirror_) return {};
+  return world.boundary.vector(wall_viscous_velocity.name).subspan(first_, count_);
 }
 
 void DynamicParticles::refresh_set(World& world) {
@@ -223,7 +260,7 @@ void DynamicParticles::refresh_set(World& world) {
   set_.position = w.x;
   set_.fields = w.neighbours();
   set_.fields.inv_density = inv_rho_.data();
-  set_.viscous_velocity = mirror_ ? noslip_v_.data() : w.v.data();
+  set_.viscous_velocity = mirror_ ? viscous_velocity(world).data() : w.v.data();
 }
 
 // Wall pressure extrapolated from the fluid around each wall particle
@@ -269,7 +306,7 @@ void DynamicParticles::begin_step(World& world) {
 
 void DynamicParticles::hold_fluid(World& world, double time) {
   ParticleStore& fluid = world.fluid;
-  const std::size_t n = fluid.size();
+  const std::size_t n = fluid.owned_size();  // another rank puts back its own particles
   if (n == 0 || count_ == 0) return;
   const auto x = fluid.position();
   const auto wall_body = world.boundary.body().subspan(first_, count_);
@@ -323,9 +360,8 @@ void DynamicParticles::place_ghosts(World& world, double time) {
 // mDBC: density (then pressure) and the viscous velocity from the ghost nodes.
 std::uint64_t DynamicParticles::fill_from_ghost_nodes(World& world, const sph::FluidView& fluid) {
   WallFields w(world.boundary, first_, count_);
-  if (noslip_v_.size() != (mirror_ ? count_ : 0)) noslip_v_.resize(mirror_ ? count_ : 0);
-  const std::uint64_t pairs =
-      sph::extrapolate_from_ghost_nodes(world.dim, {w.x, ghost_, w.v}, fluid, *settings_.kernel, slip_, w.p, noslip_v_);
+  const std::uint64_t pairs = sph::extrapolate_from_ghost_nodes(world.dim, {w.x, ghost_, w.v}, fluid,
+                                                                *settings_.kernel, slip_, w.p, viscous_velocity(world));
   // The wall density from its material's EOS, never below rho0 (as DBC: a wall never pulls the fluid).
   inv_rho_.resize(count_);
   for (std::size_t b = 0; b < count_; ++b) {
@@ -347,20 +383,23 @@ std::uint64_t DynamicParticles::fill_continuity(World& world, const sph::FluidVi
   // Continuity of each wall particle with its fluid neighbours and, for the
   // extrapolated no-slip, the mirrored velocity v_b* = 2 v_b - v~_b.
   auto start = [&](Index b) { return WallSums{w.v[b], w.rho[b], 0.0, 0.0, Vec3{}}; };
+  const std::span<Vec3> mirrored = viscous_velocity(world);
   auto finish = [&](Index b, const WallSums& s) { w.drho[b] = s.drho; };
   auto finish_mirror = [&](Index b, const WallSums& s) {
     w.drho[b] = s.drho;
     // No fluid in reach: nothing to mirror, the wall's own velocity.
-    noslip_v_[b] = s.wsum > 0.0 ? w.v[b] * 2.0 - s.vsum * (1.0 / s.wsum) : w.v[b];
+    mirrored[b] = s.wsum > 0.0 ? w.v[b] * 2.0 - s.vsum * (1.0 / s.wsum) : w.v[b];
   };
   const std::span<const Vec3> wx = w.x;
   const KernelTable& kernel = *settings_.kernel;
   const sph::Continuity continuity{fluid.neighbours()};
   std::uint64_t pairs = 0;
   if (mirror_) {
-    if (noslip_v_.size() != count_) noslip_v_.resize(count_);
     pairs = sph::pair_pass(count_, wx, *fluid.cells, kernel, sph::other_set, start, finish_mirror,
                            continuity, VelocityShepard{fluid.velocity.data()});
+    // A halo copy sees only part of its fluid here: its owner's value replaces it.
+    static const std::string fields[] = {wall_viscous_velocity.name};
+    world.parallel().refresh_halo(world.boundary, fields);
   } else {
     pairs = sph::pair_pass(count_, wx, *fluid.cells, kernel, sph::other_set, start, finish,
                            continuity);

@@ -65,6 +65,8 @@ class DynamicParticles final : public sph::SphBoundary {
   explicit DynamicParticles(const ParamValues& v);
 
   void setup(World& world, std::span<const int> bodies) override;
+  std::string why_not_on_ranks() const override;
+  void rows_moved(World& world) override;
   void bind(World& world, const sph::FluidSettings& settings) override;
   void begin_step(World& world) override;
   std::uint64_t fill_wall_state(World& world, const sph::FluidView& fluid) override;
@@ -83,6 +85,8 @@ class DynamicParticles final : public sph::SphBoundary {
   void update_pressure(World& world);
   void initial_density(World& world);
   void refresh_set(World& world);  // set_ at the store's current arrays
+  void lay_out(World& world);      // what depends on where my particles sit in the store
+  std::span<Vec3> viscous_velocity(World& world) const;  // v_b* of my particles (empty without mirror_)
   void place_ghosts(World& world, double time);  // ghost_ at the walls' prescribed positions
   std::uint64_t fill_continuity(World& world, const sph::FluidView& fluid);
   std::uint64_t fill_from_ghost_nodes(World& world, const sph::FluidView& fluid);
@@ -110,7 +114,6 @@ class DynamicParticles final : public sph::SphBoundary {
   // viscous term that uses it (laminar, Laplacian).
   bool mirror_ = false;
   std::vector<Vec3> ghost0_, ghost_;  // mDBC ghost nodes of my wall particles at t = 0 and now
-  std::vector<Vec3> noslip_v_;    // v_b* of my wall particles, refilled by every fill_wall_state()
   sph::WallSet set_;              // all my wall particles, one set
 };
 

@@ -21,6 +21,8 @@ class Repulsion final : public sph::SphBoundary {
   explicit Repulsion(const ParamValues& v);
 
   void setup(World& world, std::span<const int> bodies) override;
+  // No wall particles: the forces need only each fluid particle's own place.
+  std::string why_not_on_ranks() const override { return {}; }
   void bind(World& world, const sph::FluidSettings& settings) override;
   void begin_step(World&) override {}
   std::uint64_t add_direct_forces(World& world, const sph::FluidView& fluid, const sph::FluidRates& rates) override;

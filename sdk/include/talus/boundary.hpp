@@ -5,6 +5,7 @@
 #pragma once
 
 #include <span>
+#include <string>
 
 #include "talus/plugin.hpp"
 
@@ -19,6 +20,18 @@ class TALUS_API Boundary : public Model {
   // Called once with every wall body that names this model: build wall
   // particles or geometry from the bodies' shapes.
   virtual void setup(World& world, std::span<const int> bodies) = 0;
+
+  // On several MPI ranks the wall particles of world.boundary are spread over
+  // the ranks with the fluid: each rank owns those in its region and holds
+  // copies of the others' within a halo behind them. Empty when this model
+  // works so; else why not, which the host names when it refuses the run. A
+  // model that keeps nothing per wall particle outside the store need only
+  // return "".
+  virtual std::string why_not_on_ranks() const { return "its plugin does not say that it runs on several MPI ranks"; }
+  // After the host moved rows of world.boundary between ranks and rebuilt the
+  // halo rows behind the owned ones: row ranges and per-particle state kept
+  // outside the store are stale and are rebuilt here from the store's fields.
+  virtual void rows_moved(World& /*world*/) {}
 };
 
 }  // namespace talus
