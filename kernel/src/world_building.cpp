@@ -131,8 +131,37 @@ void start_hydrostatic(World& world, const std::vector<ParamValues>& bodies) {
 
 }  // namespace
 
+namespace {
+
+bool same_values(const ParamValues& a, const ParamValues& b);
+
+bool same_value(const ParamValue& a, const ParamValue& b) {
+  if (a.type != b.type || a.real != b.real || a.integer != b.integer || a.boolean != b.boolean || a.text != b.text ||
+      a.reals != b.reals || a.strings != b.strings || a.indices != b.indices || a.objects.size() != b.objects.size())
+    return false;
+  for (std::size_t k = 0; k < a.objects.size(); ++k)
+    if (!same_values(a.objects[k], b.objects[k])) return false;
+  return true;
+}
+
+// The same validated values (defaults filled), wherever in the scene they stand.
+bool same_values(const ParamValues& a, const ParamValues& b) {
+  const auto& x = a.entries();
+  const auto& y = b.entries();
+  if (x.size() != y.size()) return false;
+  for (std::size_t k = 0; k < x.size(); ++k)
+    if (x[k].first != y[k].first || !same_value(x[k].second, y[k].second)) return false;
+  return true;
+}
+
+}  // namespace
+
 void Simulation::build_bodies() {
   const auto& bodies = scene_.values.objects("bodies");
+  // Bodies that name the same boundary model with the same parameters share
+  // one instance, set up once with all of them (Boundary::setup): a model
+  // then holds every particle of its walls in one row range.
+  std::vector<std::size_t> boundary_owner;  // the first body of each instance
   for (std::size_t bi = 0; bi < bodies.size(); ++bi) {
     const ParamValues& v = bodies[bi];
     Body body;
@@ -143,9 +172,19 @@ void Simulation::build_bodies() {
     if (v.has("material")) body.material = world_.find_material(v.string("material"));
     if (v.has("dp")) body.dp = v.real("dp");
     if (v.has("boundary")) {  // walls, and blocks that the fluid sees
-      auto boundary = registry_.create_as<Boundary>("boundary", v.model_name("boundary"), v.model_params("boundary"));
-      body.boundary = boundary.get();
-      models_.push_back(std::move(boundary));
+      auto same = [&](std::size_t owner) {
+        const ParamValues& o = bodies[owner];
+        return o.model_name("boundary") == v.model_name("boundary") &&
+               same_values(o.model_params("boundary"), v.model_params("boundary"));
+      };
+      if (const auto it = std::ranges::find_if(boundary_owner, same); it != boundary_owner.end()) {
+        body.boundary = world_.bodies[*it].boundary;
+      } else {
+        auto boundary = registry_.create_as<Boundary>("boundary", v.model_name("boundary"), v.model_params("boundary"));
+        body.boundary = boundary.get();
+        models_.push_back(std::move(boundary));
+        boundary_owner.push_back(bi);
+      }
     }
     if (v.has("contact")) {
       auto contact = registry_.create("contact", v.model_name("contact"), v.model_params("contact"));
@@ -213,11 +252,16 @@ void Simulation::fill_bodies(const std::vector<std::string>& fields) {
   }
   if (density && pressure) start_hydrostatic(world_, bodies);
   world_.refresh_material_index();
-  for (std::size_t bi = 0; bi < world_.bodies.size(); ++bi)
-    if (world_.bodies[bi].boundary) {
-      const int index = static_cast<int>(bi);
-      world_.bodies[bi].boundary->setup(world_, std::span<const int>(&index, 1));
-    }
+  // Each boundary model once, with all its bodies, in the order of its first.
+  std::vector<Boundary*> done;
+  for (const Body& first : world_.bodies) {
+    if (!first.boundary || std::ranges::find(done, first.boundary) != done.end()) continue;
+    std::vector<int> members;
+    for (std::size_t bi = 0; bi < world_.bodies.size(); ++bi)
+      if (world_.bodies[bi].boundary == first.boundary) members.push_back(static_cast<int>(bi));
+    first.boundary->setup(world_, members);
+    done.push_back(first.boundary);
+  }
 }
 
 void Simulation::build_stages() {
