@@ -93,7 +93,7 @@ int Simulation::run(const RunOptions& options) {
     write_checkpoint(name.str());
     checkpoints.push_back(name.str());
     while (checkpoints.size() > checkpoint_keep) {
-      fs::remove(checkpoints.front(), ec);
+      if (root) fs::remove(checkpoints.front(), ec);
       checkpoints.erase(checkpoints.begin());
     }
     return name.str();
@@ -159,8 +159,10 @@ int Simulation::run(const RunOptions& options) {
       phases_.host += since_start_.lap();
       write_due_outputs(false);
       print_new_warnings();
-      if ((checkpoint_every > 0 && world_.time >= next_checkpoint_time - time_eps) ||
-          (checkpoint_minutes > 0 && progress.elapsed() - wall_at_last_checkpoint >= 60.0 * checkpoint_minutes)) {
+      // Every rank must take the checkpoint at the same step: clocks differ, rank 0's decides.
+      bool minutes_due = checkpoint_minutes > 0 && progress.elapsed() - wall_at_last_checkpoint >= 60.0 * checkpoint_minutes;
+      if (ranks_ && checkpoint_minutes > 0) minutes_due = ranks_->sum(root && minutes_due ? 1.0 : 0.0) > 0.0;
+      if ((checkpoint_every > 0 && world_.time >= next_checkpoint_time - time_eps) || minutes_due) {
         checkpoint();
         wall_at_last_checkpoint = progress.elapsed();
         if (checkpoint_every > 0)
@@ -175,22 +177,25 @@ int Simulation::run(const RunOptions& options) {
         }
       progress.update(world_.time, world_.end_time, dt, world_.step, ranks_ ? fluid_over_ranks_ : world_.fluid.size(),
                       status);
-      if (const int sig = stop_signals.caught()) {
-        if (ranks_)
-          throw RunError("error: stopped by signal " + std::to_string(sig) + " at step " + std::to_string(world_.step) +
-                         "; a run on several MPI ranks cannot write its checkpoint yet");
+      // A signal that reached any rank stops every rank after this step.
+      int sig = stop_signals.caught();
+      if (ranks_) sig = static_cast<int>(ranks_->max(static_cast<double>(sig)));
+      if (sig) {
         progress.finish();
         write_due_outputs(true);
         print_new_warnings();
         const std::string path = checkpoint();
+        if (!root) return 128 + sig;
         for (auto& w : writers_) w.writer->close(world_);
-        // The resume command repeats the options that shape the run (threads: the same result bit for bit).
+        // The resume command repeats the options that shape the run (threads: the same result bit for bit;
+        // another rank count gives it to round-off).
         const std::string threads = options.threads > 0 ? " --threads " + std::to_string(options.threads) : "";
+        const std::string mpirun = ranks_ ? "mpirun -np " + std::to_string(ranks_->ranks()) + " " : "";
         std::printf("talus: stopped by %s at step %llu (t = %s s); checkpoint written.\n"
-                    "       resume with: talus run %s --out %s --restart %s%s\n",
+                    "       resume with: %stalus run %s --out %s --restart %s%s\n",
                     sig == SIGINT ? "SIGINT" : "SIGTERM", static_cast<unsigned long long>(world_.step),
-                    fixed(world_.time, 6).c_str(), scene_.path.c_str(), output_directory_.c_str(), path.c_str(),
-                    threads.c_str());
+                    fixed(world_.time, 6).c_str(), mpirun.c_str(), scene_.path.c_str(), output_directory_.c_str(),
+                    path.c_str(), threads.c_str());
         return 128 + sig;
       }
     }

@@ -68,7 +68,7 @@ class TALUS_API Simulation {
 
   // Checkpoints (also used by tests): write the complete state; read it back
   // into a simulation built from the same scene.
-  void write_checkpoint(const std::string& path) const;
+  void write_checkpoint(const std::string& path);
   void read_checkpoint(const std::string& path);
 
  private:

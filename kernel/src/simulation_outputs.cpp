@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -81,7 +82,7 @@ void Simulation::write_due_outputs(bool force) {
   release_after_writers();
 }
 
-void Simulation::write_checkpoint(const std::string& path) const {
+void Simulation::write_checkpoint(const std::string& path) {
   RunState state;
   state.scene_hash = text_hash(scene_.text);
   for (const auto& s : stages_) state.stage_states.push_back(s->save_state());
@@ -90,7 +91,18 @@ void Simulation::write_checkpoint(const std::string& path) const {
     state.writer_next_step.push_back(w.next_step);
   }
   state.last_output_time = last_output_time_;
-  save_checkpoint(path, world_, state);
+  if (!ranks_) {
+    save_checkpoint(path, world_, state);
+    return;
+  }
+  // On several ranks rank 0 writes the one file a serial run would, from the
+  // gathered copy, with every rank's count of removed particles.
+  const std::uint64_t removed = world_.removed;
+  world_.removed = ranks_->sum(removed);
+  gather_for_writers();
+  if (ranks::rank() == 0) save_checkpoint(path, world_, state);
+  release_after_writers();
+  world_.removed = removed;
 }
 
 void Simulation::read_checkpoint(const std::string& path) {
@@ -122,6 +134,16 @@ void Simulation::read_checkpoint(const std::string& path) {
     writers_[i].next_step = state.writer_next_step[i];
   }
   last_output_time_ = state.last_output_time;
+  // The wall models lay out their rows in the order they made them (ids
+  // ascending), as a serial run keeps them; a run on several ranks wrote them
+  // in rank order.
+  const auto ids = world_.boundary.ids();
+  if (!std::ranges::is_sorted(ids)) {
+    std::vector<Index> order(ids.size());
+    std::iota(order.begin(), order.end(), Index{0});
+    std::ranges::sort(order, {}, [&](Index i) { return ids[i]; });
+    world_.boundary.reorder(order);
+  }
   world_.refresh_material_index();
 }
 

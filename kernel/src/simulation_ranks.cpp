@@ -21,7 +21,7 @@ namespace talus {
 namespace {
 
 // What runs on several ranks so far; the rest is refused before anything is written.
-std::string unsupported_on_ranks(const Scene& scene, const World& world, bool restart) {
+std::string unsupported_on_ranks(const World& world) {
   for (std::size_t b = 0; b < world.bodies.size(); ++b) {
     const Body& body = world.bodies[b];
     if (body.kind == BodyKind::block)
@@ -43,11 +43,6 @@ std::string unsupported_on_ranks(const Scene& scene, const World& world, bool re
              "model or other parameters than wall '" + holder->name + "', so its wall particles belong to a " +
              "second model; walls whose particles belong to several models";
   }
-  if (scene.values.has("checkpoint")) {
-    const ParamValues& c = scene.values.object("checkpoint");
-    if (c.has("every") || c.has("every_minutes")) return "/checkpoint: checkpoints";
-  }
-  if (restart) return "--restart: a restart";
   return {};
 }
 
@@ -55,7 +50,7 @@ std::string unsupported_on_ranks(const Scene& scene, const World& world, bool re
 
 void Simulation::spread_over_ranks(bool restart) {
   if (ranks::count() < 2) return;
-  const std::string what = unsupported_on_ranks(scene_, world_, restart);
+  const std::string what = unsupported_on_ranks(world_);
   if (!what.empty())
     throw InputError("error: " + scene_.path + ": " + what + " do not run on several MPI ranks yet (" +
                      std::to_string(ranks::count()) + " were started); run this scene on one process");
@@ -63,6 +58,9 @@ void Simulation::spread_over_ranks(bool restart) {
   skin_ = world_.dp;
   ranks_ = ranks::make_host(world_, radius, radius + skin_);
   world_.set_parallel(ranks_.get());
+  // A restart read every particle and the run's count of removed ones on
+  // every rank: rank 0 keeps the count, as each rank counts its own from here.
+  if (restart && ranks::rank() != 0) world_.removed = 0;
   ranks_->distribute(world_);
   rebuild_ranks();
 }

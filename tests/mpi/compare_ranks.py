@@ -29,6 +29,24 @@ def run(cmd, out):
         sys.exit(f"FAIL: {' '.join(cmd)} exited {result.returncode}\n{result.stdout}\n{result.stderr}")
 
 
+def mpirun(n):
+    return [os.environ.get("TALUS_MPIEXEC", "mpirun"), "-np", str(n), "--oversubscribe"]
+
+
+def compare(label, step0, ref, step, got, tol):
+    """Prints the largest differences of `got` from `ref`; True when inside tol = (x, v, rho)."""
+    if step != step0 or not np.array_equal(got["id"], ref["id"]):
+        print(f"{label}: step {step} vs {step0}, {len(got['id'])} particles vs {len(ref['id'])}: FAIL")
+        return False
+    dx = max(np.max(np.abs(got[k] - ref[k])) for k in ("x", "y", "z"))
+    dv = max(np.max(np.abs(got[k] - ref[k])) for k in ("velocity_0", "velocity_1", "velocity_2"))
+    drho = np.max(np.abs(got["density"] - ref["density"]))
+    ok = dx <= tol[0] and dv <= tol[1] and drho <= tol[2]
+    print(f"{label}, step {step}, {len(ref['id'])} particles: max |dx| {dx:.3e} m, |dv| {dv:.3e} m/s, "
+          f"|drho| {drho:.3e} kg/m^3: {'ok' if ok else 'FAIL'}")
+    return ok
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("talus")
@@ -40,26 +58,15 @@ def main():
     ap.add_argument("--rho-tol", type=float, required=True)
     a = ap.parse_args()
     name = os.path.splitext(os.path.basename(a.scene))[0]
-    mpirun = os.environ.get("TALUS_MPIEXEC", "mpirun")
     serial_out = os.path.join(a.outdir, "serial")
     run([a.talus, "run", a.scene], serial_out)
     step0, ref = last_step(os.path.join(serial_out, name + ".h5part"))
     failed = False
     for n in a.ranks:
         out = os.path.join(a.outdir, f"ranks{n}")
-        run([mpirun, "-np", str(n), "--oversubscribe", a.talus, "run", a.scene], out)
+        run(mpirun(n) + [a.talus, "run", a.scene], out)
         step, got = last_step(os.path.join(out, name + ".h5part"))
-        if step != step0 or not np.array_equal(got["id"], ref["id"]):
-            print(f"{n} ranks: step {step} vs {step0}, {len(got['id'])} particles vs {len(ref['id'])}: FAIL")
-            failed = True
-            continue
-        dx = max(np.max(np.abs(got[k] - ref[k])) for k in ("x", "y", "z"))
-        dv = max(np.max(np.abs(got[k] - ref[k])) for k in ("velocity_0", "velocity_1", "velocity_2"))
-        drho = np.max(np.abs(got["density"] - ref["density"]))
-        ok = dx <= a.x_tol and dv <= a.v_tol and drho <= a.rho_tol
-        failed |= not ok
-        print(f"{n} ranks, step {step}, {len(ref['id'])} particles: max |dx| {dx:.3e} m, |dv| {dv:.3e} m/s, "
-              f"|drho| {drho:.3e} kg/m^3: {'ok' if ok else 'FAIL'}")
+        failed |= not compare(f"{n} ranks", step0, ref, step, got, (a.x_tol, a.v_tol, a.rho_tol))
     sys.exit(1 if failed else 0)
 
 

@@ -13,12 +13,13 @@
 namespace {
 
 // On several MPI ranks an error on one must end them all, or the others wait
-// for it forever; its message names the rank.
+// for it forever; its message names the rank. A code returned without a
+// message (a run stopped by a signal) is one all ranks agreed on.
 int finish(int code, const char* message) {
   using namespace talus;
   if (ranks::count() > 1) {
     if (message) std::fprintf(stderr, "talus: rank %d of %d: %s\n", ranks::rank(), ranks::count(), message);
-    if (code != 0) ranks::abort_all(code);
+    if (code != 0 && message) ranks::abort_all(code);
   } else if (message) {
     std::fprintf(stderr, "%s\n", message);
   }

@@ -1,0 +1,60 @@
+#!/usr/bin/env python3
+"""A restart on another rank count continues as the run it restarts does:
+runs a scene serially to the end (the reference), and on FROM ranks with
+checkpoints; restarts that run's checkpoint nearest the middle step on each
+of the TO rank counts (1 is serial), and the serial run's on FROM ranks; each
+restarted run's last output step must match the reference particle by
+particle to the bounds given.
+
+usage: restart_ranks.py TALUS SCENE OUTDIR --from 2 --to 1 3 --x-tol M --v-tol M/S --rho-tol KG/M3
+"""
+import argparse
+import glob
+import os
+import sys
+
+from compare_ranks import compare, last_step, mpirun, run
+
+
+def middle_checkpoint(folder, name, last):
+    files = sorted(glob.glob(os.path.join(folder, name + "_*.checkpoint")))
+    if not files:
+        sys.exit(f"FAIL: no checkpoint in {folder}")
+    step = lambda f: int(f.rsplit("_", 1)[1].split(".")[0])
+    return min(files, key=lambda f: abs(step(f) - last / 2))
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("talus")
+    ap.add_argument("scene")
+    ap.add_argument("outdir")
+    ap.add_argument("--from", dest="source", type=int, default=2)
+    ap.add_argument("--to", type=int, nargs="+", default=[1, 3])
+    ap.add_argument("--x-tol", type=float, required=True)
+    ap.add_argument("--v-tol", type=float, required=True)
+    ap.add_argument("--rho-tol", type=float, required=True)
+    a = ap.parse_args()
+    tol = (a.x_tol, a.v_tol, a.rho_tol)
+    name = os.path.splitext(os.path.basename(a.scene))[0]
+    launch = lambda n: (mpirun(n) if n > 1 else []) + [a.talus, "run", a.scene]
+
+    serial = os.path.join(a.outdir, "serial")
+    run(launch(1), serial)
+    step0, ref = last_step(os.path.join(serial, name + ".h5part"))
+    source = os.path.join(a.outdir, f"ranks{a.source}")
+    run(launch(a.source), source)
+    ok = compare(f"{a.source} ranks", step0, ref, *last_step(os.path.join(source, name + ".h5part")), tol)
+
+    restarts = [(middle_checkpoint(source, name, step0), a.source, n) for n in a.to]
+    restarts.append((middle_checkpoint(serial, name, step0), 1, a.source))
+    for checkpoint, written, n in restarts:
+        out = os.path.join(a.outdir, f"from{written}_to{n}")
+        run(launch(n) + ["--restart", checkpoint], out)
+        label = f"restart of {os.path.basename(checkpoint)} ({written} -> {n} ranks)"
+        ok &= compare(label, step0, ref, *last_step(os.path.join(out, name + ".h5part")), tol)
+    sys.exit(0 if ok else 1)
+
+
+if __name__ == "__main__":
+    main()
