@@ -1,7 +1,10 @@
 #include "ranks.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdlib>
+#include <functional>
+#include <numeric>
 
 #if TALUS_WITH_MPI
 #include <mpi.h>
@@ -42,6 +45,7 @@ class ExchangeHost final : public Host {
   int ranks() const override { return exchange_.ranks(); }
   double sum(double v) const override { return exchange_.sum(v); }
   std::uint64_t sum(std::uint64_t v) const override { return exchange_.sum(v); }
+  void sum(std::span<double> v) const override { exchange_.sum(v); }
   double max(double v) const override { return exchange_.max(v); }
   double min(double v) const override { return exchange_.min(v); }
   void refresh_halo(ParticleStore& store, std::span<const std::string> fields) override {
@@ -50,13 +54,36 @@ class ExchangeHost final : public Host {
   void distribute(World& world) override { exchange_.scatter(stores_of(world), kStoreWeights); }
   void drop_halos(World& world) override { exchange_.drop_halos(stores_of(world)); }
   void migrate(World& world) override { exchange_.migrate(stores_of(world)); }
-  void build_halos(World& world) override { exchange_.build_halos(stores_of(world)); }
+  void build_halos(World& world) override;
   void gather_to_root(World& world) override { exchange_.gather_to_root(stores_of(world)); }
   void release_gathered(World& world) override { exchange_.release_gathered(stores_of(world)); }
 
  private:
   mpi::RankExchange exchange_;
 };
+
+// World.boundary's rows in two groups: wall particles, which one boundary
+// model holds as one range of rows (Boundary::rows_moved), and block
+// particles, whose models find them by body wherever they lie. Owned block
+// rows come first and owned wall rows last, and the halo holds the wall rows
+// first, so the wall rows, owned and halo, are one range.
+void ExchangeHost::build_halos(World& world) {
+  exchange_.drop_halos(stores_of(world));
+  ParticleStore& boundary = world.boundary;
+  std::vector<std::uint8_t> block_row(boundary.size());
+  const auto body = boundary.body();
+  for (std::size_t i = 0; i < block_row.size(); ++i) block_row[i] = world.bodies[body[i]].kind == BodyKind::block;
+  if (!std::is_sorted(block_row.begin(), block_row.end(), std::greater<>())) {
+    std::vector<Index> order(block_row.size());
+    std::iota(order.begin(), order.end(), Index{0});
+    std::stable_partition(order.begin(), order.end(), [&](Index i) { return block_row[i] != 0; });
+    boundary.reorder(order);
+    std::sort(block_row.begin(), block_row.end(), std::greater<>());
+  }
+  const std::vector<std::uint8_t> groups[2] = {{}, std::move(block_row)};
+  const int group_count[2] = {1, 2};
+  exchange_.build_halos(stores_of(world), groups, group_count);
+}
 
 }  // namespace
 

@@ -285,6 +285,28 @@ TEST(NeighbourGrid, OrderIsAPermutation) {
   for (Index i = 0; i < 100; ++i) EXPECT_EQ(order[i], i);
 }
 
+// A grid of some rows of a store (one block's particles among others) finds
+// exactly the listed points within the radius, reported by their row.
+TEST(NeighbourGrid, SubsetOfRowsFindsOnlyThoseRows) {
+  std::vector<Vec3> pos;
+  for (int i = 0; i < 200; ++i) pos.push_back({std::fmod(i * 0.37, 1.0), std::fmod(i * 0.61, 1.0), 0.0});
+  std::vector<Index> rows;
+  for (Index i = 0; i < 200; i += 3) rows.push_back(i);
+  NeighbourGrid grid;
+  const double radius = 0.15;
+  grid.configure(2, {0, 0, 0}, {1, 1, 0}, radius);
+  grid.build(pos, std::span<const Index>(rows));
+  const Vec3 at{0.4, 0.55, 0.0};
+  std::vector<Index> found;
+  grid.for_each_neighbour(at, radius, [&](Index j, const Vec3&, double) { found.push_back(j); });
+  std::vector<Index> expected;
+  for (const Index i : rows)
+    if (norm2(pos[i] - at) < radius * radius) expected.push_back(i);
+  std::sort(found.begin(), found.end());
+  ASSERT_GT(expected.size(), 2u);
+  EXPECT_EQ(found, expected);
+}
+
 // Wall particles 1e19 m apart (a fuzzed dp) asked for more cells than a
 // size_t counts: the product wrapped, the grid was too small and build()
 // wrote past it. The grid is coarsened instead, and still finds neighbours.

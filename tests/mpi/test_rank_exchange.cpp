@@ -197,6 +197,18 @@ TEST(RankExchangeReductions, SumInRankOrderGivesTheSameBitsEverywhere) {
   EXPECT_EQ(exchange.min(mine), 0.1);
 }
 
+// The force on each block, six numbers per block, summed element by element in
+// one message: each element as the scalar sum in rank order would give it.
+TEST(RankExchangeReductions, VectorSumIsTheScalarSumOfEachElement) {
+  RankExchange exchange(MPI_COMM_WORLD, settings_for(2, 4, false, 0.1));
+  std::vector<double> mine(7);
+  for (std::size_t k = 0; k < mine.size(); ++k) mine[k] = 0.1 * (exchange.rank() + 1) + 1e-3 * double(k);
+  std::vector<double> summed = mine;
+  exchange.sum(std::span<double>(summed));
+  for (std::size_t k = 0; k < mine.size(); ++k) EXPECT_EQ(summed[k], exchange.sum(mine[k])) << "element " << k;
+  exchange.sum(std::span<double>());  // nothing to sum still takes part in the message
+}
+
 }  // namespace
 }  // namespace talus::mpi
 

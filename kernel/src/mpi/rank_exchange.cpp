@@ -52,6 +52,17 @@ double RankExchange::sum(double local) const {
   return total;
 }
 
+void RankExchange::sum(std::span<double> local) const {
+  const std::size_t n = local.size();
+  std::vector<double> all(n * nranks());
+  MPI_Allgather(local.data(), message_size(n), MPI_DOUBLE, all.data(), message_size(n), MPI_DOUBLE, comm_);
+  for (std::size_t k = 0; k < n; ++k) {
+    double total = 0.0;
+    for (std::size_t r = 0; r < nranks(); ++r) total += all[r * n + k];
+    local[k] = total;
+  }
+}
+
 std::uint64_t RankExchange::sum(std::uint64_t local) const {
   std::uint64_t total = 0;
   MPI_Allreduce(&local, &total, 1, MPI_UINT64_T, MPI_SUM, comm_);
@@ -178,35 +189,45 @@ void RankExchange::drop_halos(std::span<ParticleStore* const> stores) {
   plans_.clear();
 }
 
-void RankExchange::build_halos(std::span<ParticleStore* const> stores) {
+void RankExchange::build_halos(std::span<ParticleStore* const> stores, std::span<const std::vector<std::uint8_t>> groups,
+                               std::span<const int> group_count) {
   drop_halos(stores);
   // An owned particle's cell centre is inside this rank's region, at most half
   // a cell from the particle on each axis: the box reaches that much further.
   const double w = settings_.reach + 0.5 * settings_.cell;
-  for (ParticleStore* store : stores) {
-    HaloPlan plan;
-    plan.store = store;
-    std::vector<std::vector<Index>> send(nranks());
+  for (std::size_t s = 0; s < stores.size(); ++s) {
+    ParticleStore* store = stores[s];
+    const bool grouped = s < groups.size() && !groups[s].empty();
+    const int count = grouped ? group_count[s] : 1;
+    if (grouped && groups[s].size() != store->size())
+      throw std::logic_error("RankExchange::build_halos: a row group for every owned row");
+    std::vector<std::vector<std::vector<Index>>> send(count, std::vector<std::vector<Index>>(nranks()));
     std::vector<int> near;
     const auto x = store->position();
     for (std::size_t i = 0; i < x.size(); ++i) {
       near.clear();
       ranks_near(x[i], w, near);
-      for (const int r : near) send[static_cast<std::size_t>(r)].push_back(static_cast<Index>(i));
+      const int g = grouped ? groups[s][i] : 0;
+      for (const int r : near) send[g][static_cast<std::size_t>(r)].push_back(static_cast<Index>(i));
     }
-    std::vector<std::uint64_t> send_count(nranks()), receive_count(nranks());
-    for (std::size_t r = 0; r < nranks(); ++r) send_count[r] = send[r].size();
-    MPI_Alltoall(send_count.data(), 1, MPI_UINT64_T, receive_count.data(), 1, MPI_UINT64_T, comm_);
     std::size_t halo = 0;
-    for (std::size_t r = 0; r < nranks(); ++r)
-      if (send_count[r] > 0 || receive_count[r] > 0) {
-        plan.neighbours.push_back(static_cast<int>(r));
-        plan.send.push_back(std::move(send[r]));
-        plan.receive.push_back(receive_count[r]);
-        halo += receive_count[r];
-      }
+    for (int g = 0; g < count; ++g) {
+      HaloPlan plan;
+      plan.store = store;
+      plan.first = halo;
+      std::vector<std::uint64_t> send_count(nranks()), receive_count(nranks());
+      for (std::size_t r = 0; r < nranks(); ++r) send_count[r] = send[g][r].size();
+      MPI_Alltoall(send_count.data(), 1, MPI_UINT64_T, receive_count.data(), 1, MPI_UINT64_T, comm_);
+      for (std::size_t r = 0; r < nranks(); ++r)
+        if (send_count[r] > 0 || receive_count[r] > 0) {
+          plan.neighbours.push_back(static_cast<int>(r));
+          plan.send.push_back(std::move(send[g][r]));
+          plan.receive.push_back(receive_count[r]);
+          halo += receive_count[r];
+        }
+      plans_.push_back(std::move(plan));
+    }
     store->append_halo(halo);
-    plans_.push_back(std::move(plan));
     refresh_halo(*store, all_fields(*store));
   }
 }
@@ -265,23 +286,24 @@ void RankExchange::swap_packets(std::span<const int> neighbours, std::span<const
 }
 
 void RankExchange::refresh_halo(ParticleStore& store, std::span<const std::string> fields) {
-  const auto plan = std::find_if(plans_.begin(), plans_.end(), [&](const HaloPlan& p) { return p.store == &store; });
-  if (plan == plans_.end()) return;  // a store without a halo (a rank with no neighbour)
   const std::size_t per_row = row_bytes(store, fields);
-  const std::size_t n = plan->neighbours.size();
-  // The buffers keep their capacity from one refresh to the next.
-  packets_.resize(std::max(packets_.size(), n));
-  inbox_.resize(std::max(inbox_.size(), n));
-  for (std::size_t k = 0; k < n; ++k) {
-    packets_[k].clear();
-    pack_rows(store, fields, plan->send[k], packets_[k]);
-    inbox_[k].resize(plan->receive[k] * per_row);
-  }
-  swap_packets(plan->neighbours, std::span(packets_).first(n), std::span(inbox_).first(n));
-  std::size_t first = store.owned_size();
-  for (std::size_t k = 0; k < n; ++k) {
-    unpack_rows(store, fields, inbox_[k], first, plan->receive[k]);
-    first += plan->receive[k];
+  for (const HaloPlan& plan : plans_) {
+    if (plan.store != &store) continue;
+    const std::size_t n = plan.neighbours.size();
+    // The buffers keep their capacity from one refresh to the next.
+    packets_.resize(std::max(packets_.size(), n));
+    inbox_.resize(std::max(inbox_.size(), n));
+    for (std::size_t k = 0; k < n; ++k) {
+      packets_[k].clear();
+      pack_rows(store, fields, plan.send[k], packets_[k]);
+      inbox_[k].resize(plan.receive[k] * per_row);
+    }
+    swap_packets(plan.neighbours, std::span(packets_).first(n), std::span(inbox_).first(n));
+    std::size_t first = store.owned_size() + plan.first;
+    for (std::size_t k = 0; k < n; ++k) {
+      unpack_rows(store, fields, inbox_[k], first, plan.receive[k]);
+      first += plan.receive[k];
+    }
   }
 }
 

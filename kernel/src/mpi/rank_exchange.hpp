@@ -37,6 +37,7 @@ class TALUS_API RankExchange final : public Parallel {
   int rank() const override { return rank_; }
   int ranks() const override { return ranks_; }
   double sum(double local) const override;
+  void sum(std::span<double> local) const override;
   std::uint64_t sum(std::uint64_t local) const override;
   double max(double local) const override;
   double min(double local) const override;
@@ -51,8 +52,12 @@ class TALUS_API RankExchange final : public Parallel {
   // Moves every particle to the owner of its place under the current cuts.
   void migrate(std::span<ParticleStore* const> stores);
   // Drops every halo, then copies each owned particle within `reach` of another
-  // rank's region into that rank's halo.
-  void build_halos(std::span<ParticleStore* const> stores);
+  // rank's region into that rank's halo. With row groups for a store (one of
+  // `group_count[s]` per owned row; the same count on every rank), its halo
+  // holds group 0's rows from every rank, then group 1's, and so on, so that
+  // a range of owned rows and a range of halo rows can be made to meet.
+  void build_halos(std::span<ParticleStore* const> stores, std::span<const std::vector<std::uint8_t>> groups = {},
+                   std::span<const int> group_count = {});
   void drop_halos(std::span<ParticleStore* const> stores);
   // For the writers: drops the halos and appends a copy of every other rank's
   // particles to rank 0's stores, in rank order; release_gathered() takes the
@@ -66,6 +71,7 @@ class TALUS_API RankExchange final : public Parallel {
  private:
   struct HaloPlan {
     const ParticleStore* store = nullptr;
+    std::size_t first = 0;                     // its first halo row, counted from the store's owned_size()
     std::vector<int> neighbours;               // ranks this rank sends to or receives from, ascending
     std::vector<std::vector<Index>> send;      // rows sent to each neighbour
     std::vector<std::size_t> receive;          // halo rows from each neighbour, in neighbour order

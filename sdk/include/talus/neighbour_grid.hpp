@@ -108,6 +108,18 @@ class NeighbourGrid {
     sort_into_cells(pos);
   }
 
+  // Bins only the listed points pos[rows[q]] (one body's rows of a store
+  // that holds several), reported by their index in pos.
+  void build(std::span<const Vec3> pos, std::span<const Index> rows) {
+    const std::size_t n = rows.size();
+    std::fill(level_max_.begin(), level_max_.end(), 0.0);
+    if (n > 0) level_max_[0] = radius_;
+    key_.resize(n);
+    const Level& L = level_[0];
+    for (std::size_t q = 0; q < n; ++q) key_[q] = static_cast<Index>(L.cell_index(pos[rows[q]], lo_, dim_));
+    sort_into_cells(n, [&](std::size_t q) { return rows[q]; }, pos);
+  }
+
   // Bins points with their own search radii, each into the level of its radius.
   void build(std::span<const Vec3> pos, std::span<const double> radius) {
     const std::size_t n = pos.size();
@@ -248,7 +260,11 @@ class NeighbourGrid {
 
   // Counting sort of key_ into order_, with the coordinates copied alongside.
   void sort_into_cells(std::span<const Vec3> pos) {
-    const std::size_t n = pos.size();
+    sort_into_cells(pos.size(), [](std::size_t i) { return static_cast<Index>(i); }, pos);
+  }
+  // The same for n binned points whose q-th is pos[point(q)].
+  template <class Point>
+  void sort_into_cells(std::size_t n, Point point, std::span<const Vec3> pos) {
     order_.resize(n);
     xs_.resize(n);
     ys_.resize(n);
@@ -260,10 +276,11 @@ class NeighbourGrid {
     // starts are shifted back by one afterwards (no second array of cells).
     for (std::size_t i = 0; i < n; ++i) {
       const Index s = cell_start_[key_[i]]++;
-      order_[s] = static_cast<Index>(i);
-      xs_[s] = pos[i].x;
-      ys_[s] = pos[i].y;
-      zs_[s] = dim_ == 3 ? pos[i].z : 0.0;
+      const Index j = point(i);
+      order_[s] = j;
+      xs_[s] = pos[j].x;
+      ys_[s] = pos[j].y;
+      zs_[s] = dim_ == 3 ? pos[j].z : 0.0;
     }
     std::copy_backward(cell_start_.begin(), cell_start_.end() - 2, cell_start_.end() - 1);
     cell_start_[0] = 0;

@@ -27,6 +27,8 @@ class TALUS_API Parallel {
   // value, and it does not depend on message timing.
   virtual double sum(double local) const { return local; }
   virtual std::uint64_t sum(std::uint64_t local) const { return local; }
+  // Element by element, in place, in one message (the same order rule).
+  virtual void sum(std::span<double> local) const { (void)local; }
   virtual double max(double local) const { return local; }
   virtual double min(double local) const { return local; }
 
