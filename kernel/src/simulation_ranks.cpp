@@ -11,7 +11,6 @@
 #include "ranks.hpp"
 #include "run_summary.hpp"
 #include "simulation.hpp"
-#include "talus/blocks.hpp"
 #include "talus/boundary.hpp"
 #include "talus/error.hpp"
 #include "talus/periodic.hpp"
@@ -22,21 +21,24 @@ namespace {
 
 // What runs on several ranks so far; the rest is refused before anything is written.
 std::string unsupported_on_ranks(const World& world) {
+  // The ranks share out particles; blocks are stepped on every rank alike.
+  if (world.fluid.size() == 0 && world.boundary.size() == 0)
+    return "/bodies: no body has particles (blocks only); scenes without particles";
   for (std::size_t b = 0; b < world.bodies.size(); ++b) {
     const Body& body = world.bodies[b];
-    if (body.kind == BodyKind::block)
-      return "/bodies/" + std::to_string(b) + ": body '" + body.name + "' is a block body; blocks";
-    if (body.kind == BodyKind::wall && body.boundary)
+    if (body.boundary)
       if (const std::string why = body.boundary->why_not_on_ranks(); !why.empty())
-        return "/bodies/" + std::to_string(b) + "/boundary: wall '" + body.name + "': " + why + "; such walls";
+        return "/bodies/" + std::to_string(b) + "/boundary: " + to_string(body.kind) + " '" + body.name + "': " + why +
+               "; such " + to_string(body.kind) + "s";
   }
-  // Rows of world.boundary move between ranks without regard to their model:
-  // one model must hold them all to rebuild its row range (Boundary::rows_moved).
+  // The host keeps the wall particles of world.boundary as one range of rows
+  // (the block particles apart, ranks.cpp): one model must hold them all
+  // (Boundary::rows_moved).
   std::vector<char> has_rows(world.bodies.size(), 0);
   for (const std::int32_t b : world.boundary.body()) has_rows[b] = 1;
   const Body* holder = nullptr;
   for (std::size_t b = 0; b < world.bodies.size(); ++b) {
-    if (!has_rows[b] || !world.bodies[b].boundary) continue;
+    if (!has_rows[b] || !world.bodies[b].boundary || world.bodies[b].kind != BodyKind::wall) continue;
     if (!holder) holder = &world.bodies[b];
     else if (world.bodies[b].boundary != holder->boundary)
       return "/bodies/" + std::to_string(b) + "/boundary: wall '" + world.bodies[b].name + "' has another boundary " +

@@ -234,18 +234,25 @@ std::string DynamicParticles::why_not_on_ranks() const {
   return {};
 }
 
-// On several ranks this model holds every wall particle of the store (owned
-// rows, then halo rows), and the rows came in a new order.
+// On several ranks this model holds every wall particle of the store, which
+// the host lays out as one range of rows (owned, then halo) beside the block
+// particles of other models, and the rows came in a new order.
 void DynamicParticles::rows_moved(World& world) {
   const ParticleStore& s = world.boundary;
   const auto body = s.body();
+  auto mine = [&](std::size_t i) { return slot_of_body_[body[i]] >= 0; };
+  std::size_t first = 0;
+  while (first < s.size() && !mine(first)) ++first;
+  std::size_t end = first;
+  while (end < s.size() && mine(end)) ++end;
   for (std::size_t i = 0; i < s.size(); ++i)
-    if (slot_of_body_[body[i]] < 0)
-      throw RunError("error: wall '" + world.bodies[body[i]].name +
-                     "' has another boundary model than dynamic_particles; on several MPI ranks one "
-                     "dynamic_particles model must hold every wall particle");
-  first_ = 0;
-  count_ = s.size();
+    if ((i < first || i >= end) && (mine(i) || world.bodies[body[i]].kind != BodyKind::block))
+      throw RunError("error: wall '" + world.bodies[body[i]].name + "' " +
+                     (mine(i) ? "has particles apart from the others of its dynamic_particles model"
+                              : "has another boundary model than dynamic_particles") +
+                     "; on several MPI ranks one dynamic_particles model must hold every wall particle, in one range");
+  first_ = first;
+  count_ = end - first;
   lay_out(world);
 }
 

@@ -7,6 +7,7 @@
 #include "talus/blocks.hpp"
 #include "talus/dda/polyhedron.hpp"
 #include "talus/error.hpp"
+#include "talus/parallel.hpp"
 #include "talus/world.hpp"
 
 namespace talus::coupling {
@@ -82,6 +83,7 @@ void ImpulseLedger::reset(std::size_t n) {
   for (auto* v : {&force_, &torque_, &owed_, &owed_angular_, &owed_start_, &owed_angular_start_, &given_,
                   &given_start_, &committed_, &committed_torque_, &applied_, &applied_torque_})
     v->assign(n, Vec3{});
+  share_.assign(6 * n, 0.0);
 }
 
 void ImpulseLedger::begin_step() {
@@ -99,6 +101,12 @@ void ImpulseLedger::begin_step() {
 void ImpulseLedger::commit(World& world, std::span<const std::size_t> blocks, double time, double dt) {
   const double host_dt = time - world.time;  // the last commit of a step has time = t^n + dt
   if (!(host_dt > 0.0)) return;
+  sums_ = share_;
+  world.parallel().sum(sums_);
+  for (std::size_t k = 0; k < blocks.size(); ++k) {
+    force_[k] = {sums_[6 * k + 0], sums_[6 * k + 1], sums_[6 * k + 2]};
+    torque_[k] = {sums_[6 * k + 3], sums_[6 * k + 4], sums_[6 * k + 5]};
+  }
   BlockSet& b = *world.blocks;
   for (std::size_t k = 0; k < blocks.size(); ++k) {
     const std::size_t i = blocks[k];
@@ -114,19 +122,32 @@ void ImpulseLedger::commit(World& world, std::span<const std::size_t> blocks, do
   }
 }
 
-void ImpulseLedger::add_impulse(World& world, std::span<const std::size_t> blocks, std::size_t k, const Vec3& impulse,
-                                const Vec3& angular, double time) {
+void ImpulseLedger::add_impulses(World& world, std::span<const std::size_t> blocks, std::span<const Vec3> impulse,
+                                 std::span<const Vec3> angular, double time) {
+  const std::size_t n = blocks.size();
+  sums_.assign(6 * n, 0.0);
+  for (std::size_t k = 0; k < n; ++k)
+    for (int a = 0; a < 3; ++a) {
+      sums_[6 * k + a] = impulse[k][a];
+      sums_[6 * k + 3 + a] = angular[k][a];
+    }
+  world.parallel().sum(sums_);
   const double host_dt = time - world.time;
   if (!(host_dt > 0.0)) return;
   BlockSet& b = *world.blocks;
-  given_[k] += impulse;
-  owed_[k] += impulse;
-  owed_angular_[k] += angular;
-  const Vec3 f = impulse / host_dt, t = angular / host_dt;
-  b.external_force[blocks[k]] += f;
-  b.external_torque[blocks[k]] += t;
-  committed_[k] += f;
-  committed_torque_[k] += t;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec3 j{sums_[6 * k + 0], sums_[6 * k + 1], sums_[6 * k + 2]};
+    const Vec3 l{sums_[6 * k + 3], sums_[6 * k + 4], sums_[6 * k + 5]};
+    if (j == Vec3{} && l == Vec3{}) continue;
+    given_[k] += j;
+    owed_[k] += j;
+    owed_angular_[k] += l;
+    const Vec3 f = j / host_dt, t = l / host_dt;
+    b.external_force[blocks[k]] += f;
+    b.external_torque[blocks[k]] += t;
+    committed_[k] += f;
+    committed_torque_[k] += t;
+  }
 }
 
 }  // namespace talus::coupling

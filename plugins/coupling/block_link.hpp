@@ -44,19 +44,22 @@ class ImpulseLedger {
   void reset(std::size_t blocks);
   // Start of the fluid step: the dda stage has applied what was committed.
   void begin_step();
-  // The force and torque (about the centroid) the fluid exerts on block k
-  // at the last evaluation.
+  // The force and torque (about the centroid) this rank's own fluid exerts
+  // on block k at the last evaluation (on one rank: all the fluid).
   void set(std::size_t k, const Vec3& force, const Vec3& torque) {
-    force_[k] = force;
-    torque_[k] = torque;
+    share_[6 * k + 0] = force.x, share_[6 * k + 1] = force.y, share_[6 * k + 2] = force.z;
+    share_[6 * k + 3] = torque.x, share_[6 * k + 4] = torque.y, share_[6 * k + 5] = torque.z;
   }
-  // Fluid state advanced to `time` with rates applied over `dt`.
+  // Fluid state advanced to `time` with rates applied over `dt`. On several
+  // MPI ranks every rank calls it: the forces are summed over the ranks, so
+  // every rank's blocks get the same.
   void commit(World& world, std::span<const std::size_t> blocks, double time, double dt);
-  // An impulse (and its moment about the centroid) the fluid gave block k
-  // outside its rates, after the step's last commit (a fluid particle
-  // stopped at the block's face): owed, and delivered over the next step.
-  void add_impulse(World& world, std::span<const std::size_t> blocks, std::size_t k, const Vec3& impulse,
-                   const Vec3& angular, double time);
+  // Impulses (and their moments about the centroid) this rank's fluid gave
+  // the blocks outside its rates, after the step's last commit (fluid
+  // particles stopped at a block's face), per block: owed, and delivered over
+  // the next step. Every rank calls it (the impulses are summed over the ranks).
+  void add_impulses(World& world, std::span<const std::size_t> blocks, std::span<const Vec3> impulse,
+                    std::span<const Vec3> angular, double time);
 
   const Vec3& force(std::size_t k) const { return force_[k]; }
   const Vec3& torque(std::size_t k) const { return torque_[k]; }
@@ -66,7 +69,9 @@ class ImpulseLedger {
   const Vec3& given(std::size_t k) const { return given_[k]; }
 
  private:
-  std::vector<Vec3> force_, torque_;                    // last evaluation
+  std::vector<double> share_;                           // this rank's force and torque per block, last evaluation
+  std::vector<double> sums_;                            // scratch for the sums over the ranks
+  std::vector<Vec3> force_, torque_;                    // last evaluation, all ranks
   std::vector<Vec3> owed_, owed_angular_;               // after the last commit
   std::vector<Vec3> owed_start_, owed_angular_start_;   // at begin_step
   std::vector<Vec3> given_, given_start_;

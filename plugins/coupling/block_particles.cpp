@@ -165,8 +165,7 @@ void BlockParticles::bind(World& world, const sph::FluidSettings& settings) {
                              &wall_density_rate, &wall_density_n, &block_offset})
     s.require(*f);
   const BlockSet& b = *world.blocks;
-  begin_.clear();
-  end_.clear();
+  rows_.clear();
   all_.clear();
   covered_.clear();
   ghost_offset_.assign(s.size(), Vec3{});
@@ -213,8 +212,7 @@ void BlockParticles::bind(World& world, const sph::FluidSettings& settings) {
       bid[first + q] = bodies_[k];
       all_.push_back(static_cast<Index>(first + q));
     }
-    begin_.push_back(first);
-    end_.push_back(first + points.size());
+    rows_.emplace_back(all_.end() - static_cast<std::ptrdiff_t>(points.size()), all_.end());
   }
   cells_.assign(blocks_.size(), NeighbourGrid{});
   for (auto& c : cells_) c.configure(world.dim, settings.lo, settings.hi, radius, world.periodic);
@@ -229,6 +227,47 @@ void BlockParticles::bind(World& world, const sph::FluidSettings& settings) {
   update_pressure(world);
 }
 
+// DBC block particles need the fluid within one support radius, which the
+// halo holds; the fluid's force on a block is summed over the ranks
+// (ImpulseLedger), and every rank moves the blocks alike (the dda stage runs
+// on every rank with the same forces).
+std::string BlockParticles::why_not_on_ranks() const {
+  if (mdbc_)
+    return "\"method\": \"mdbc\" needs the fluid around ghost nodes up to three support radii from their block "
+           "particle, beyond the halo of one radius";
+  return {};
+}
+
+void BlockParticles::rows_moved(World& world) {
+  const ParticleStore& s = world.boundary;
+  const auto body = s.body();
+  for (auto& rows : rows_) rows.clear();
+  all_.clear();
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const auto k = std::find(bodies_.begin(), bodies_.end(), body[i]);
+    if (k == bodies_.end()) continue;
+    rows_[static_cast<std::size_t>(k - bodies_.begin())].push_back(static_cast<Index>(i));
+    all_.push_back(static_cast<Index>(i));
+  }
+  inv_rho_.assign(s.size(), 0.0);
+  refresh_sets(world);
+}
+
+std::span<const Vec3> BlockParticles::positions_of(const World& world, std::size_t k) {
+  const auto x = world.boundary.position();
+  outer_x_.resize(rows_[k].size());
+  for (std::size_t q = 0; q < rows_[k].size(); ++q) outer_x_[q] = x[rows_[k][q]];
+  return outer_x_;
+}
+
+std::pair<std::size_t, std::size_t> BlockParticles::range_of(std::size_t k) const {
+  const std::vector<Index>& rows = rows_[k];
+  if (rows.empty()) return {0, 0};
+  if (rows.back() - rows.front() + 1 != static_cast<Index>(rows.size()))
+    throw RunError("block_particles: the particles of block '" + names_[k] + "' are not one range of rows");
+  return {rows.front(), rows.size()};
+}
+
 // Particles at the blocks' current poses with their rigid velocities.
 void BlockParticles::place(World& world) {
   ParticleStore& s = world.boundary;
@@ -240,7 +279,7 @@ void BlockParticles::place(World& world) {
     const std::size_t i = blocks_[k];
     const Vec3 X = b.position[i], V = b.velocity[i], w = b.angular_velocity[i];
     const Quaternion q = b.orientation[i];
-    for (std::size_t p = begin_[k]; p < end_[k]; ++p) {
+    for (const Index p : rows_[k]) {
       const Vec3 r = rotate(q, off[p]);
       x[p] = wrap_periodic(world, X + r);  // a block may straddle a periodic boundary: its particles stay inside
       v[p] = V + cross(w, r);
@@ -260,15 +299,14 @@ void BlockParticles::initial_density(World& world) {
   fluid_cells.build(fx);
   const Material& mat = world.materials[material_];
   auto rho = s.scalar("density");
-  const std::span<const Vec3> x = s.position();
   for (std::size_t blk = 0; blk < blocks_.size(); ++blk) {
-    const std::size_t first = begin_[blk], count = end_[blk] - begin_[blk];
+    const std::vector<Index>& rows = rows_[blk];
     auto start = [](Index) { return sph::ExtrapolationSums{}; };
     auto finish = [&](Index b, const sph::ExtrapolationSums& sum) {
       if (sum.wsum <= 0.0) return;
-      rho[first + b] = std::max(rho0_, mat.eos->density_at(std::max(0.0, sum.psum / sum.wsum)));
+      rho[rows[b]] = std::max(rho0_, mat.eos->density_at(std::max(0.0, sum.psum / sum.wsum)));
     };
-    sph::pair_pass(count, x.subspan(first, count), fluid_cells, k, sph::other_set, start, finish,
+    sph::pair_pass(rows.size(), positions_of(world, blk), fluid_cells, k, sph::other_set, start, finish,
                    sph::PressureExtrapolation{fs.scalar("pressure").data(), fs.scalar("density").data(), world.gravity});
   }
 }
@@ -289,11 +327,12 @@ void BlockParticles::begin_step(World& world) {
 
 void BlockParticles::hold_fluid(World& world, double time) {
   ParticleStore& fluid = world.fluid;
-  const std::size_t n = fluid.size();
-  if (n == 0) return;
+  const std::size_t n = fluid.owned_size();  // another rank puts back its own particles
   const BlockSet& b = *world.blocks;
   const auto x = fluid.position();
   inside_.resize(n);
+  impulse_.assign(blocks_.size(), Vec3{});
+  angular_.assign(blocks_.size(), Vec3{});
   for (std::size_t k = 0; k < blocks_.size(); ++k) {
     const std::size_t blk = blocks_[k];
     const Vec3 lo = b.bounds_lo[blk], hi = b.bounds_hi[blk], centre = b.position[blk];
@@ -324,9 +363,11 @@ void BlockParticles::hold_fluid(World& world, double time) {
       const Vec3 r = rotate(q, on_face);
       const Vec3 change = crossings_.put_back(world, i, centre + r, rotate(q, poly.normals[face]),
                                               b.velocity[blk] + cross(b.angular_velocity[blk], r), k, what, time);
-      ledger_.add_impulse(world, blocks_, k, change * -1.0, cross(r, change * -1.0), time);  // action = reaction
+      impulse_[k] -= change;  // action = reaction
+      angular_[k] -= cross(r, change);
     }
   }
+  ledger_.add_impulses(world, blocks_, impulse_, angular_, time);
 }
 
 void BlockParticles::refresh_sets(World& world) {
@@ -341,16 +382,14 @@ void BlockParticles::refresh_sets(World& world) {
   const auto mat = s.material();
   sets_.resize(blocks_.size());
   for (std::size_t k = 0; k < blocks_.size(); ++k) {
-    const std::size_t first = begin_[k], count = end_[k] - begin_[k];
-    cells_[k].build(x.subspan(first, count));
+    // The grid holds only this block's rows and reports them by their row in the store.
+    cells_[k].build(x, rows_[k]);
     sph::WallSet& set = sets_[k];
     set.cells = &cells_[k];
-    set.position = x.subspan(first, count);
-    // Offset views: neighbour index j of this block's grid reads particle first + j.
-    set.fields = {v.data() + first, rho.data() + first, p.data() + first,
-                  c.data() + first, m.data() + first, mat.data() + first};
-    set.fields.inv_density = inv_rho_.data() + first;
-    set.viscous_velocity = mirror_ ? viscous_v_.data() + first : set.fields.velocity;
+    set.position = x;
+    set.fields = {v.data(), rho.data(), p.data(), c.data(), m.data(), mat.data()};
+    set.fields.inv_density = inv_rho_.data();
+    set.viscous_velocity = mirror_ ? viscous_v_.data() : set.fields.velocity;
     set.rigid_body = true;
     const std::size_t blk = blocks_[k];
     set.body = {b.position[blk], b.bounds_lo[blk], b.bounds_hi[blk]};
@@ -372,7 +411,7 @@ std::uint64_t BlockParticles::fill_from_ghost_nodes(World& world, const sph::Flu
   const EquationOfState& eos = *world.materials[material_].eos;
   std::uint64_t pairs = 0;
   for (std::size_t k = 0; k < blocks_.size(); ++k) {
-    const std::size_t first = begin_[k], count = end_[k] - begin_[k];
+    const auto [first, count] = range_of(k);
     const sph::GhostNodes nodes{x.subspan(first, count), std::span<const Vec3>(ghost_).subspan(first, count),
                                 v.subspan(first, count)};
     pairs += sph::extrapolate_from_ghost_nodes(world.dim, nodes, fluid, *settings_.kernel, slip_,
@@ -404,11 +443,11 @@ std::uint64_t BlockParticles::fill_continuity(World& world, const sph::FluidView
   };
   std::uint64_t pairs = 0;
   for (std::size_t k = 0; k < blocks_.size(); ++k) {
-    const std::size_t first = begin_[k], count = end_[k] - begin_[k];
-    for (std::size_t q = 0; q < count; ++q) inv_rho_[first + q] = 1.0 / rho[first + q];
-    auto start = [&](Index q) { return WallSums{v[first + q], rho[first + q], 0.0}; };
-    auto finish = [&](Index q, const WallSums& sum) { drho[first + q] = sum.drho; };
-    pairs += sph::pair_pass(count, sets_[k].position, *fluid.cells, kernel, sph::other_set, start,
+    const std::vector<Index>& rows = rows_[k];
+    for (const Index q : rows) inv_rho_[q] = 1.0 / rho[q];
+    auto start = [&](Index q) { return WallSums{v[rows[q]], rho[rows[q]], 0.0}; };
+    auto finish = [&](Index q, const WallSums& sum) { drho[rows[q]] = sum.drho; };
+    pairs += sph::pair_pass(rows.size(), positions_of(world, k), *fluid.cells, kernel, sph::other_set, start,
                             finish, continuity);
   }
   return pairs;
@@ -443,7 +482,7 @@ void BlockParticles::describe_passes(StagePlan& plan) const {
   std::string names;
   for (const auto& n : names_) names += (names.empty() ? "'" : ", '") + n + "'";
   std::size_t count = 0;
-  for (std::size_t k = 0; k < begin_.size(); ++k) count += end_[k] - begin_[k];
+  for (const auto& rows : rows_) count += rows.size();
   plan.passes.push_back("fluid-block pass (block_particles " + names +
                         "): the stage's pressure + viscosity + continuity against each block's wall set; force and "
                         "torque on the block");

@@ -30,6 +30,8 @@
 // does not wall the fluid there: fluid inside it is counted and warned only.
 #pragma once
 
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "block_link.hpp"
@@ -46,6 +48,8 @@ class BlockParticles final : public sph::SphBoundary {
   explicit BlockParticles(const ParamValues& v);
 
   void setup(World& world, std::span<const int> bodies) override;
+  std::string why_not_on_ranks() const override;
+  void rows_moved(World& world) override;
   void bind(World& world, const sph::FluidSettings& settings) override;
   void begin_step(World& world) override;
   std::uint64_t fill_wall_state(World& world, const sph::FluidView& fluid) override;
@@ -59,7 +63,7 @@ class BlockParticles final : public sph::SphBoundary {
   // For tests: per block of this model, in the order of the bodies.
   std::size_t blocks() const { return blocks_.size(); }
   std::size_t block_index(std::size_t k) const { return blocks_[k]; }
-  std::size_t particles(std::size_t k) const { return end_[k] - begin_[k]; }
+  std::size_t particles(std::size_t k) const { return rows_[k].size(); }
   const ImpulseLedger& ledger() const { return ledger_; }
   std::size_t removed_fluid() const { return removed_; }
   std::size_t fitted_fluid() const { return fitted_; }
@@ -67,6 +71,8 @@ class BlockParticles final : public sph::SphBoundary {
  private:
   void place(World& world);
   void refresh_sets(World& world);  // grids and wall sets at the current block particles
+  std::span<const Vec3> positions_of(const World& world, std::size_t k);  // block k's, in outer_x_
+  std::pair<std::size_t, std::size_t> range_of(std::size_t k) const;       // mDBC: block k's rows are one range
   void initial_density(World& world);
   void update_pressure(World& world);
   std::uint64_t fill_continuity(World& world, const sph::FluidView& fluid);
@@ -84,8 +90,11 @@ class BlockParticles final : public sph::SphBoundary {
   std::vector<int> bodies_;
   std::vector<std::string> names_;
   std::vector<std::size_t> blocks_;       // index in world.blocks per body
-  std::vector<std::size_t> begin_, end_;  // particle ranges in world.boundary per block
+  // Per block, its particles' rows in world.boundary: one range of rows on
+  // one rank; on several, wherever the host put the owned and halo rows.
+  std::vector<std::vector<Index>> rows_;
   std::vector<Index> all_;                // my particles in world.boundary (EOS batch)
+  std::vector<Vec3> outer_x_;             // one block's positions, for a pass over its particles
   int material_ = -1;
   double rho0_ = 0.0, dp_ = 0.0;
   int layers_ = 0;
@@ -100,6 +109,7 @@ class BlockParticles final : public sph::SphBoundary {
   std::vector<Vec3> ghost_offset_, ghost_, viscous_v_;
   bool mirror_ = false;  // a mirrored viscous velocity (mdbc with laminar/Laplacian viscosity, or free slip)
   std::vector<std::uint8_t> inside_;          // per fluid particle: inside the block being checked
+  std::vector<Vec3> impulse_, angular_;       // per block: what this rank's fluid put back gave it this step
   sph::WallCrossings crossings_;              // fluid found inside my blocks (by block)
   ImpulseLedger ledger_;
 };

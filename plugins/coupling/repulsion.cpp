@@ -63,11 +63,17 @@ void Repulsion::bind(World& world, const sph::FluidSettings&) {
   ledger_.reset(blocks_.size());
 }
 
+// The penalty needs nothing beyond each fluid particle's own place; the
+// reaction is summed over the ranks (ImpulseLedger).
+std::string Repulsion::why_not_on_ranks() const { return {}; }
+
 double Repulsion::stable_time_step(const World&) const { return spring_.stable_time_step(min_mass_); }
 
 std::uint64_t Repulsion::add_direct_forces(World& world, const sph::FluidView& fluid, const sph::FluidRates& rates) {
   const BlockSet& b = *world.blocks;
   const std::int64_t n = static_cast<std::int64_t>(fluid.position.size());
+  // Halo rows (other ranks' particles) get rates too, but their owners give the block their reaction.
+  const std::int64_t owned = static_cast<std::int64_t>(world.fluid.owned_size());
   const double r0 = r0_;
   const sph::PenaltySpring spring = spring_;
   std::uint64_t pairs = 0;
@@ -111,6 +117,7 @@ std::uint64_t Repulsion::add_direct_forces(World& world, const sph::FluidView& f
         if (fn <= 0.0) continue;
         const Vec3 on_fluid = nf * fn;
         rates.acceleration[ii] += on_fluid / fluid.mass[ii];
+        if (ii >= owned) continue;
         force -= on_fluid;
         torque -= cross(x - X, on_fluid);
       }

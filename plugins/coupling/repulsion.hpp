@@ -23,6 +23,7 @@ class Repulsion final : public sph::SphBoundary {
   explicit Repulsion(const ParamValues& v);
 
   void setup(World& world, std::span<const int> bodies) override;
+  std::string why_not_on_ranks() const override;
   void bind(World& world, const sph::FluidSettings& settings) override;
   void begin_step(World&) override { ledger_.begin_step(); }
   std::uint64_t add_direct_forces(World& world, const sph::FluidView& fluid, const sph::FluidRates& rates) override;

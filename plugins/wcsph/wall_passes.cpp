@@ -43,6 +43,7 @@ struct WallPass {
   const double* material_mu;  // where the fluid has no mu_eff
   bool continuity;
   Vec3 period;
+  std::size_t owned;  // the fluid's own rows: halo rows' reaction is their owner's
 
   template <class S>
   S start(Index i) const {
@@ -82,6 +83,7 @@ struct WallPass {
     auto first = [&](Index i) { return start<BodySums>(i); };
     auto finish = [&](Index i, const BodySums& s, BodyReaction& on_body) {
       add_rates(i, s);
+      if (i >= owned) return;
       const double mi = fluid.mass[i];
       const Vec3 force = s.acc * (-mi);
       on_body.force += force;
@@ -115,7 +117,8 @@ std::uint64_t WcsphStage::wall_passes(World& world) {
     const std::span<const sph::WallSet> sets = wall->wall_sets();
     for (std::size_t k = 0; k < sets.size(); ++k) {
       const sph::WallSet& set = sets[k];
-      const WallPass pass{fluid, rates, set, world.kernel, material_mu_.data(), continuity, period_};
+      const WallPass pass{fluid, rates, set, world.kernel, material_mu_.data(), continuity, period_,
+                          world.fluid.owned_size()};
       sph::Neighbours viscous_nb = set.fields;
       viscous_nb.velocity = set.viscous_velocity;
       const sph::PressureForce pressure{set.fields};
