@@ -1,9 +1,12 @@
 #!/usr/bin/env python3
 """Runs a scene serially and on several MPI ranks and compares the last
 output step particle by particle (matched by id): positions, velocities and
-densities must agree to round-off, bounds given on the command line.
+densities must agree to round-off, bounds given on the command line. A scene
+with blocks also has their last states compared, block by block: position
+and orientation to the position bound, velocity and angular velocity to the
+velocity bound, and the fluid's force and torque on them to --f-tol.
 
-usage: compare_ranks.py TALUS SCENE OUTDIR --ranks 2 3 [--x-tol M] [--v-tol M/S] [--rho-tol KG/M3]
+usage: compare_ranks.py TALUS SCENE OUTDIR --ranks 2 3 --x-tol M --v-tol M/S --rho-tol KG/M3 [--f-tol N]
 """
 import argparse
 import os
@@ -14,12 +17,28 @@ import h5py
 import numpy as np
 
 
+BLOCK_FIELDS = ("position", "orientation", "velocity", "angular_velocity", "external_force", "external_torque")
+
+
+def last_group(parent):
+    steps = sorted((k for k in parent.keys() if k.startswith("Step#")), key=lambda k: int(k.split("#")[1]))
+    return parent[steps[-1]]
+
+
 def last_step(path):
+    """The last step's particles (sorted by id) and, when the file has blocks, their last states."""
     with h5py.File(path, "r") as f:
-        steps = sorted(f.keys(), key=lambda k: int(k.split("#")[1]))
-        s = f[steps[-1]]
-        order = np.argsort(s["id"][()])
-        fields = {k: s[k][()][order] for k in ("id", "x", "y", "z", "velocity_0", "velocity_1", "velocity_2", "density")}
+        s = last_group(f)
+        names = ("id", "x", "y", "z", "velocity_0", "velocity_1", "velocity_2", "density")
+        if all(k in s for k in names):
+            order = np.argsort(s["id"][()])
+            fields = {k: s[k][()][order] for k in names}
+        else:  # a scene of blocks only
+            fields = {k: np.zeros(0) for k in names}
+        if "Blocks" in f:
+            b = last_group(f["Blocks"])
+            fields["blocks"] = {k: b[k][()] for k in BLOCK_FIELDS}
+            fields["blocks"]["step"] = int(b.attrs["step"][0])
         return int(s.attrs["step"][0]), fields
 
 
@@ -33,17 +52,35 @@ def mpirun(n):
     return [os.environ.get("TALUS_MPIEXEC", "mpirun"), "-np", str(n), "--oversubscribe"]
 
 
+def compare_blocks(label, ref, got, tol):
+    """Prints the largest differences of the block states; True when inside tol = (x, v, rho, f)."""
+    if got is None or got["step"] != ref["step"] or got["position"].shape != ref["position"].shape:
+        print(f"{label}: the block states differ in step or count: FAIL")
+        return False
+    d = {k: np.max(np.abs(got[k] - ref[k])) for k in BLOCK_FIELDS}
+    ok = (max(d["position"], d["orientation"]) <= tol[0] and max(d["velocity"], d["angular_velocity"]) <= tol[1]
+          and (tol[3] is None or max(d["external_force"], d["external_torque"]) <= tol[3]))
+    print(f"{label}, step {ref['step']}, {len(ref['position'])} blocks: max |dx| {d['position']:.3e} m, "
+          f"|dq| {d['orientation']:.3e}, |dv| {d['velocity']:.3e} m/s, |dw| {d['angular_velocity']:.3e} rad/s, "
+          f"|dF| {d['external_force']:.3e} N, |dM| {d['external_torque']:.3e} N m: {'ok' if ok else 'FAIL'}")
+    return ok
+
+
 def compare(label, step0, ref, step, got, tol):
-    """Prints the largest differences of `got` from `ref`; True when inside tol = (x, v, rho)."""
+    """Prints the largest differences of `got` from `ref`; True when inside tol = (x, v, rho, f)."""
     if step != step0 or not np.array_equal(got["id"], ref["id"]):
         print(f"{label}: step {step} vs {step0}, {len(got['id'])} particles vs {len(ref['id'])}: FAIL")
         return False
-    dx = max(np.max(np.abs(got[k] - ref[k])) for k in ("x", "y", "z"))
-    dv = max(np.max(np.abs(got[k] - ref[k])) for k in ("velocity_0", "velocity_1", "velocity_2"))
-    drho = np.max(np.abs(got["density"] - ref["density"]))
+    def largest(keys):
+        return max((np.max(np.abs(got[k] - ref[k]), initial=0.0) for k in keys))
+    dx = largest(("x", "y", "z"))
+    dv = largest(("velocity_0", "velocity_1", "velocity_2"))
+    drho = largest(("density",))
     ok = dx <= tol[0] and dv <= tol[1] and drho <= tol[2]
     print(f"{label}, step {step}, {len(ref['id'])} particles: max |dx| {dx:.3e} m, |dv| {dv:.3e} m/s, "
           f"|drho| {drho:.3e} kg/m^3: {'ok' if ok else 'FAIL'}")
+    if "blocks" in ref:
+        ok &= compare_blocks(label, ref["blocks"], got.get("blocks"), tol)
     return ok
 
 
@@ -56,6 +93,7 @@ def main():
     ap.add_argument("--x-tol", type=float, required=True)
     ap.add_argument("--v-tol", type=float, required=True)
     ap.add_argument("--rho-tol", type=float, required=True)
+    ap.add_argument("--f-tol", type=float, default=None, help="bound on the blocks' force and torque (N, N m)")
     a = ap.parse_args()
     name = os.path.splitext(os.path.basename(a.scene))[0]
     serial_out = os.path.join(a.outdir, "serial")
@@ -66,7 +104,7 @@ def main():
         out = os.path.join(a.outdir, f"ranks{n}")
         run(mpirun(n) + [a.talus, "run", a.scene], out)
         step, got = last_step(os.path.join(out, name + ".h5part"))
-        failed |= not compare(f"{n} ranks", step0, ref, step, got, (a.x_tol, a.v_tol, a.rho_tol))
+        failed |= not compare(f"{n} ranks", step0, ref, step, got, (a.x_tol, a.v_tol, a.rho_tol, a.f_tol))
     sys.exit(1 if failed else 0)
 
 

@@ -35,7 +35,7 @@ def main():
     ap.add_argument("--v-tol", type=float, required=True)
     ap.add_argument("--rho-tol", type=float, required=True)
     a = ap.parse_args()
-    tol = (a.x_tol, a.v_tol, a.rho_tol)
+    tol = (a.x_tol, a.v_tol, a.rho_tol, None)
     name = os.path.splitext(os.path.basename(a.scene))[0]
     launch = lambda n: (mpirun(n) if n > 1 else []) + [a.talus, "run", a.scene]
 
