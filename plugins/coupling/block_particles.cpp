@@ -253,17 +253,28 @@ void BlockParticles::rows_moved(World& world) {
   refresh_sets(world);
 }
 
+namespace {
+// Rows in ascending order are one range when they span no more than their count.
+bool is_one_range(const std::vector<Index>& rows) {
+  return rows.back() - rows.front() + 1 == static_cast<Index>(rows.size());
+}
+}  // namespace
+
 std::span<const Vec3> BlockParticles::positions_of(const World& world, std::size_t k) {
   const auto x = world.boundary.position();
-  outer_x_.resize(rows_[k].size());
-  for (std::size_t q = 0; q < rows_[k].size(); ++q) outer_x_[q] = x[rows_[k][q]];
+  const std::vector<Index>& rows = rows_[k];
+  if (rows.empty()) return {};
+  // One range of rows (always on one rank): a view, no copy.
+  if (is_one_range(rows)) return x.subspan(rows.front(), rows.size());
+  outer_x_.resize(rows.size());
+  for (std::size_t q = 0; q < rows.size(); ++q) outer_x_[q] = x[rows[q]];
   return outer_x_;
 }
 
 std::pair<std::size_t, std::size_t> BlockParticles::range_of(std::size_t k) const {
   const std::vector<Index>& rows = rows_[k];
   if (rows.empty()) return {0, 0};
-  if (rows.back() - rows.front() + 1 != static_cast<Index>(rows.size()))
+  if (!is_one_range(rows))
     throw RunError("block_particles: the particles of block '" + names_[k] + "' are not one range of rows");
   return {rows.front(), rows.size()};
 }

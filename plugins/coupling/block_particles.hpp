@@ -71,7 +71,7 @@ class BlockParticles final : public sph::SphBoundary {
  private:
   void place(World& world);
   void refresh_sets(World& world);  // grids and wall sets at the current block particles
-  std::span<const Vec3> positions_of(const World& world, std::size_t k);  // block k's, in outer_x_
+  std::span<const Vec3> positions_of(const World& world, std::size_t k);  // block k's (a view, or copied to outer_x_)
   std::pair<std::size_t, std::size_t> range_of(std::size_t k) const;       // mDBC: block k's rows are one range
   void initial_density(World& world);
   void update_pressure(World& world);
