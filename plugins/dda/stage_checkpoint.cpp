@@ -1,5 +1,5 @@
 // The dda stage's checkpoint state (DdaStage::save_state, load_state): its
-// byte encoding through state_archive.hpp, and the checks that a restored
+// byte encoding through talus/state_archive.hpp, and the checks that a restored
 // state fits this scene before any contact loop reads it.
 #include "dda_stage.hpp"
 
@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "state_archive.hpp"
 #include "talus/error.hpp"
+#include "talus/state_archive.hpp"
 
 namespace talus::dda {
 
@@ -71,7 +71,7 @@ std::string DdaStage::save_state() const {
 }
 
 void DdaStage::load_state(std::string_view bytes) {
-  StateReader r{bytes};
+  StateReader r{bytes, "the dda stage's state"};
   std::uint8_t started = 0;
   r.value(started);
   started_ = started != 0;

@@ -11,10 +11,10 @@
 #include "file_io.hpp"
 #include "handoff.hpp"
 #include "slip_path.hpp"
-#include "state_archive.hpp"
 #include "talus/blocks.hpp"
 #include "talus/error.hpp"
 #include "talus/output_name.hpp"
+#include "talus/state_archive.hpp"
 #include "talus/world.hpp"
 
 namespace talus::strength_reduction {
@@ -397,7 +397,7 @@ std::string StrengthReduction::status(const World& /*world*/) const {
 }
 
 std::string StrengthReduction::save_state() const {
-  dda::StateWriter w;
+  StateWriter w;
   w.value(search_);
   w.value(static_cast<std::uint8_t>(loaded_));
   w.bytes(loaded_dda_);
@@ -415,7 +415,7 @@ std::string StrengthReduction::save_state() const {
 }
 
 void StrengthReduction::load_state(std::string_view bytes) {
-  dda::StateReader r{bytes, "the strength_reduction stage's state"};
+  StateReader r{bytes, "the strength_reduction stage's state"};
   FactorSearch search;
   r.value(search);
   if (search.tolerance() != search_.tolerance())

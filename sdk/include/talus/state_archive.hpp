@@ -1,4 +1,5 @@
-// Flat binary archives for stage checkpoints (same build, same machine:
+// Flat binary archives for the opaque checkpoint state of stages and boundary
+// models (Stage::save_state, Boundary::save_state; same build, same machine:
 // checkpoints are not an exchange format). `what` names the state in the
 // error a truncated checkpoint raises.
 #pragma once
@@ -11,7 +12,7 @@
 
 #include "talus/error.hpp"
 
-namespace talus::dda {
+namespace talus {
 
 struct StateWriter {
   std::string out;
@@ -30,7 +31,7 @@ struct StateWriter {
 
 struct StateReader {
   std::string_view in;
-  const char* what = "the dda stage's state";
+  const char* what = "a stage's state";
 
   [[noreturn]] void truncated() const { throw InputError(std::string("error: checkpoint: ") + what + " is truncated"); }
   template <class T>
@@ -60,4 +61,4 @@ struct StateReader {
   }
 };
 
-}  // namespace talus::dda
+}  // namespace talus
