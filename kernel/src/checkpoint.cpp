@@ -19,9 +19,10 @@ namespace {
 
 // Header: magic (7 bytes + the format version as a digit), the payload's
 // length and its CRC-32. The payload follows. Version 2 added the length and
-// the checksum; a file of another version is refused, never guessed at.
+// the checksum, version 3 the boundary models' state; a file of another
+// version is refused, never guessed at.
 constexpr char magic[7] = {'T', 'A', 'L', 'U', 'S', 'C', 'K'};
-constexpr char format_version = '2';
+constexpr char format_version = '3';
 constexpr std::size_t header_bytes = sizeof magic + 1 + sizeof(std::uint64_t) + sizeof(std::uint32_t);
 
 class Out {
@@ -224,6 +225,8 @@ void save_checkpoint(const std::string& path, const World& world, const RunState
     out.vec(state.writer_next_step);
     out.pod<std::uint64_t>(state.stage_states.size());
     for (const auto& st : state.stage_states) out.text(st);
+    out.pod<std::uint64_t>(state.boundary_states.size());
+    for (const auto& st : state.boundary_states) out.text(st);
     save_store(out, world.fluid);
     save_store(out, world.boundary);
     const bool blocks = world.blocks != nullptr;
@@ -267,6 +270,11 @@ RunState load_checkpoint(const std::string& path, World& world, std::uint64_t sc
   const auto stages = in.pod<std::uint64_t>("stage count");
   if (stages > in.left() / sizeof(std::uint64_t)) in.fail("the stage count " + std::to_string(stages) + " is impossible");
   for (std::uint64_t k = 0; k < stages; ++k) state.stage_states.push_back(in.text("stage " + std::to_string(k + 1) + " state"));
+  const auto boundaries = in.pod<std::uint64_t>("boundary model count");
+  if (boundaries > in.left() / sizeof(std::uint64_t))
+    in.fail("the boundary model count " + std::to_string(boundaries) + " is impossible");
+  for (std::uint64_t k = 0; k < boundaries; ++k)
+    state.boundary_states.push_back(in.text("boundary model " + std::to_string(k + 1) + " state"));
   load_store(in, world.fluid, "fluid");
   load_store(in, world.boundary, "boundary");
   const auto blocks = in.pod<std::uint8_t>("block flag");

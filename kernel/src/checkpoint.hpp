@@ -1,6 +1,6 @@
 // Checkpoint files: the complete state of a run (every particle field of
-// both stores, the blocks, the clock, the stages' opaque state and the output
-// schedule) so that a restart continues bit for bit. Binary, little-endian,
+// both stores, the blocks, the clock, the opaque state of the stages and of
+// the boundary models, and the output schedule) so that a restart continues bit for bit. Binary, little-endian,
 // written to a temporary name and renamed.
 #pragma once
 
@@ -17,6 +17,7 @@ class World;
 struct RunState {
   std::uint64_t scene_hash = 0;  // the restart must use the same scene text
   std::vector<std::string> stage_states;
+  std::vector<std::string> boundary_states;  // each boundary model once, in the order of the bodies naming it
   std::vector<double> writer_next_time;
   std::vector<std::uint64_t> writer_next_step;
   double last_output_time = -1.0;

@@ -90,6 +90,7 @@ class TALUS_API Simulation {
   void gather_for_writers();
   void release_after_writers();
   void wall_rows_moved();  // after the ranks moved rows: the boundary models re-lay their particles
+  std::vector<Boundary*> boundary_models() const;  // each once, in the order of the first body naming it
   RankFigures figures_over_ranks(std::uint64_t own_particle_steps) const;
   void print_new_warnings();
   void resort_particles();

@@ -14,6 +14,7 @@
 #include "ranks.hpp"
 #include "talus/number_text.hpp"
 #include "output_schedule.hpp"
+#include "talus/boundary.hpp"
 #include "talus/error.hpp"
 #include "talus/stage.hpp"
 #include "talus/writer.hpp"
@@ -86,6 +87,7 @@ void Simulation::write_checkpoint(const std::string& path) {
   RunState state;
   state.scene_hash = text_hash(scene_.text);
   for (const auto& s : stages_) state.stage_states.push_back(s->save_state());
+  for (const Boundary* b : boundary_models()) state.boundary_states.push_back(b->save_state());
   for (const auto& w : writers_) {
     state.writer_next_time.push_back(w.next_time);
     state.writer_next_step.push_back(w.next_step);
@@ -107,27 +109,38 @@ void Simulation::write_checkpoint(const std::string& path) {
 
 void Simulation::read_checkpoint(const std::string& path) {
   RunState state = load_checkpoint(path, world_, text_hash(scene_.text));
+  const std::vector<Boundary*> boundaries = boundary_models();
   if (state.stage_states.size() != stages_.size())
     throw InputError("error: checkpoint " + path + ": it has the state of " + std::to_string(state.stage_states.size()) +
                      " stages, this scene's pipeline has " + std::to_string(stages_.size()));
+  if (state.boundary_states.size() != boundaries.size())
+    throw InputError("error: checkpoint " + path + ": it has the state of " +
+                     std::to_string(state.boundary_states.size()) + " boundary models, this scene has " +
+                     std::to_string(boundaries.size()));
   if (state.writer_next_time.size() != writers_.size())
     throw InputError("error: checkpoint " + path + ": it has the schedule of " +
                      std::to_string(state.writer_next_time.size()) + " outputs, this scene has " +
                      std::to_string(writers_.size()));
-  for (std::size_t i = 0; i < stages_.size(); ++i) {
+  // Models see only their bytes: the file and the model are named here.
+  auto load = [&](auto& model, const std::string& bytes, const std::string& who) {
     try {
-      stages_[i]->load_state(state.stage_states[i]);
+      model.load_state(bytes);
     } catch (const InputError& e) {
-      // Stages see only their bytes: the file and the stage are named here.
       std::string why = e.what();
       for (const char* prefix : {"error: checkpoint: ", "error: "})
         if (why.rfind(prefix, 0) == 0) {
           why.erase(0, std::strlen(prefix));
           break;
         }
-      throw InputError("error: checkpoint " + path + ": stage " + std::to_string(i + 1) + " (" + stage_names_[i] +
-                       "): " + why);
+      throw InputError("error: checkpoint " + path + ": " + who + ": " + why);
     }
+  };
+  for (std::size_t i = 0; i < stages_.size(); ++i)
+    load(*stages_[i], state.stage_states[i], "stage " + std::to_string(i + 1) + " (" + stage_names_[i] + ")");
+  for (std::size_t k = 0; k < boundaries.size(); ++k) {
+    const auto body = std::ranges::find(world_.bodies, boundaries[k], &Body::boundary);
+    load(*boundaries[k], state.boundary_states[k],
+         "the boundary model of body '" + body->name + "' (" + body->params.pointer("boundary") + ")");
   }
   for (std::size_t i = 0; i < writers_.size(); ++i) {
     writers_[i].next_time = state.writer_next_time[i];

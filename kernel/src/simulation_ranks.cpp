@@ -130,12 +130,7 @@ void Simulation::release_after_writers() {
 
 void Simulation::wall_rows_moved() {
   world_.refresh_material_index();
-  std::vector<Boundary*> told;
-  for (const Body& body : world_.bodies)
-    if (body.boundary && std::find(told.begin(), told.end(), body.boundary) == told.end()) {
-      body.boundary->rows_moved(world_);
-      told.push_back(body.boundary);
-    }
+  for (Boundary* model : boundary_models()) model->rows_moved(world_);
 }
 
 }  // namespace talus

@@ -195,6 +195,13 @@ void Simulation::build_bodies() {
   }
 }
 
+std::vector<Boundary*> Simulation::boundary_models() const {
+  std::vector<Boundary*> models;
+  for (const Body& body : world_.bodies)
+    if (body.boundary && std::ranges::find(models, body.boundary) == models.end()) models.push_back(body.boundary);
+  return models;
+}
+
 namespace {
 // The fields of a fluid body's start state (StageParts::body_fields).
 const FieldInfo kBodyFields[] = {{"velocity", FieldType::vector, "m/s", true, true},

@@ -8,6 +8,7 @@
 #include "talus/dda/polyhedron.hpp"
 #include "talus/error.hpp"
 #include "talus/parallel.hpp"
+#include "talus/state_archive.hpp"
 #include "talus/world.hpp"
 
 namespace talus::coupling {
@@ -84,6 +85,25 @@ void ImpulseLedger::reset(std::size_t n) {
                   &given_start_, &committed_, &committed_torque_, &applied_, &applied_torque_})
     v->assign(n, Vec3{});
   share_.assign(6 * n, 0.0);
+}
+
+std::string ImpulseLedger::save_state() const {
+  StateWriter w;
+  for (const auto* v : {&force_, &torque_, &owed_, &owed_angular_, &given_, &committed_, &committed_torque_})
+    w.vector(*v);
+  return std::move(w.out);
+}
+
+void ImpulseLedger::load_state(std::string_view bytes, const char* what) {
+  StateReader r{bytes, what};
+  const std::size_t n = force_.size();
+  for (auto* v : {&force_, &torque_, &owed_, &owed_angular_, &given_, &committed_, &committed_torque_}) {
+    r.vector(*v);
+    if (v->size() != n)
+      throw InputError(std::string("error: checkpoint: ") + what + " is for " + std::to_string(v->size()) +
+                       " blocks, this scene has " + std::to_string(n));
+  }
+  r.finish();
 }
 
 void ImpulseLedger::begin_step() {

@@ -6,6 +6,7 @@
 
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "talus/periodic.hpp"
@@ -67,6 +68,13 @@ class ImpulseLedger {
   const Vec3& owed(std::size_t k) const { return owed_[k]; }
   // Total impulse the fluid has given to block k since the start.
   const Vec3& given(std::size_t k) const { return given_[k]; }
+
+  // What carries over from one step to the next (owed, given, committed and
+  // the last evaluation's force), for checkpoints; the same bits on every
+  // rank. load_state throws InputError when the bytes are not a ledger of
+  // this many blocks.
+  std::string save_state() const;
+  void load_state(std::string_view bytes, const char* what);
 
  private:
   std::vector<double> share_;                           // this rank's force and torque per block, last evaluation

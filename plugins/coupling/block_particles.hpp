@@ -59,6 +59,10 @@ class BlockParticles final : public sph::SphBoundary {
   void advance_walls(World& world, double time, double dt) override;
   void hold_fluid(World& world, double time) override;
   void describe_passes(StagePlan& plan) const override;
+  std::string save_state() const override { return ledger_.save_state(); }
+  void load_state(std::string_view bytes) override {
+    ledger_.load_state(bytes, "the block_particles model's impulse ledger");
+  }
 
   // For tests: per block of this model, in the order of the bodies.
   std::size_t blocks() const { return blocks_.size(); }

@@ -30,6 +30,8 @@ class Repulsion final : public sph::SphBoundary {
   void advance_walls(World& world, double time, double dt) override { ledger_.commit(world, blocks_, time, dt); }
   double stable_time_step(const World& world) const override;
   void describe_passes(StagePlan& plan) const override;
+  std::string save_state() const override { return ledger_.save_state(); }
+  void load_state(std::string_view bytes) override { ledger_.load_state(bytes, "the repulsion model's impulse ledger"); }
 
   std::size_t blocks() const { return blocks_.size(); }
   std::size_t block_index(std::size_t k) const { return blocks_[k]; }

@@ -110,9 +110,10 @@ void reseal(std::string& bytes) {
   put<std::uint32_t>(bytes, 16, talus::crc32(bytes.data() + header, bytes.size() - header));
 }
 
-// Where the stage states and the fluid store start in the payload.
+// Where the stage and boundary model states and the fluid store start in the payload.
 struct Layout {
   std::vector<std::size_t> stage_state;  // first byte of each stage's state
+  std::size_t boundary_count = 0;        // the number of boundary model states
   std::size_t fluid_count = 0;           // the fluid particle count
 };
 
@@ -126,6 +127,10 @@ Layout layout(const std::string& bytes) {
     l.stage_state.push_back(at + 8);
     at += 8 + get<std::uint64_t>(bytes, at);
   }
+  l.boundary_count = at;
+  const auto boundaries = get<std::uint64_t>(bytes, at);
+  at += 8;
+  for (std::uint64_t s = 0; s < boundaries; ++s) at += 8 + get<std::uint64_t>(bytes, at);
   l.fluid_count = at;
   return l;
 }
@@ -163,7 +168,7 @@ TEST(Crc32, MatchesTheStandardCheckValue) {
 TEST_F(CheckpointTest, AnIntactCheckpointIsAccepted) {
   EXPECT_EQ(refusal(scene_, good_), "");
   ASSERT_GT(bytes_.size(), 1000u);
-  EXPECT_EQ(bytes_.substr(0, 8), "TALUSCK2");
+  EXPECT_EQ(bytes_.substr(0, 8), "TALUSCK3");
 }
 
 TEST_F(CheckpointTest, EveryFlippedByteIsRefused) {
@@ -195,7 +200,7 @@ TEST_F(CheckpointTest, AnOlderFormatVersionIsRefusedByName) {
   std::string bytes = bytes_;
   bytes[7] = '1';
   const std::string m = refused(bytes);
-  expect_refused(m, "format version 1; this talus reads version 2");
+  expect_refused(m, "format version 1; this talus reads version 3");
 }
 
 // The checksum is recomputed: only the field checks stand between these and the solver.
@@ -276,6 +281,17 @@ TEST_F(CheckpointTest, AnUnreadableStageStateIsRefusedNamingTheStage) {
   bytes[l.stage_state[0]] = 'x';  // the wcsph step counter
   reseal(bytes);
   expect_refused(refused(bytes), "stage 1 (wcsph): the wcsph stage's state");
+}
+
+// A boundary model's state that this scene has no model for (the water drop has one, its walls').
+TEST_F(CheckpointTest, ABoundaryModelStateTheSceneLacksIsRefused) {
+  const Layout l = layout(bytes_);
+  ASSERT_EQ(get<std::uint64_t>(bytes_, l.boundary_count), 1u);
+  std::string bytes = bytes_;
+  put<std::uint64_t>(bytes, l.boundary_count, 2);
+  bytes.insert(l.boundary_count + 8, 8, '\0');  // one more, empty, state
+  reseal(bytes);
+  expect_refused(refused(bytes), "it has the state of 2 boundary models, this scene has 1");
 }
 
 TEST_F(CheckpointTest, TalusRunRefusesWithExitTwoAndWritesNothing) {

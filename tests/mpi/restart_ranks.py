@@ -6,7 +6,7 @@ of the TO rank counts (1 is serial), and the serial run's on FROM ranks; each
 restarted run's last output step must match the reference particle by
 particle to the bounds given.
 
-usage: restart_ranks.py TALUS SCENE OUTDIR --from 2 --to 1 3 --x-tol M --v-tol M/S --rho-tol KG/M3
+usage: restart_ranks.py TALUS SCENE OUTDIR --from 2 --to 1 3 --x-tol M --v-tol M/S --rho-tol KG/M3 [--f-tol N]
 """
 import argparse
 import glob
@@ -34,8 +34,9 @@ def main():
     ap.add_argument("--x-tol", type=float, required=True)
     ap.add_argument("--v-tol", type=float, required=True)
     ap.add_argument("--rho-tol", type=float, required=True)
+    ap.add_argument("--f-tol", type=float, default=None, help="bound on the blocks' force and torque (N, N m)")
     a = ap.parse_args()
-    tol = (a.x_tol, a.v_tol, a.rho_tol, None)
+    tol = (a.x_tol, a.v_tol, a.rho_tol, a.f_tol)
     name = os.path.splitext(os.path.basename(a.scene))[0]
     launch = lambda n: (mpirun(n) if n > 1 else []) + [a.talus, "run", a.scene]
 

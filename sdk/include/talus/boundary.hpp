@@ -6,6 +6,7 @@
 
 #include <span>
 #include <string>
+#include <string_view>
 
 #include "talus/plugin.hpp"
 
@@ -32,6 +33,15 @@ class TALUS_API Boundary : public Model {
   // halo rows behind the owned ones: row ranges and per-particle state kept
   // outside the store are stale and are rebuilt here from the store's fields.
   virtual void rows_moved(World& /*world*/) {}
+
+  // State kept outside the stores and the block set from one step to the
+  // next (a coupling's impulse still owed to its blocks), as opaque bytes for
+  // checkpoints, as Stage::save_state: a restart must continue bit for bit.
+  // The host writes one copy and every rank loads it, so on several ranks the
+  // state must be the same on all of them (per-particle state belongs in the
+  // store, which the host spreads over the ranks).
+  virtual std::string save_state() const { return {}; }
+  virtual void load_state(std::string_view /*bytes*/) {}
 };
 
 }  // namespace talus
