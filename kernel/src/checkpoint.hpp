@@ -1,7 +1,7 @@
 // Checkpoint files: the complete state of a run (every particle field of
 // both stores, the blocks, the clock, the opaque state of the stages and of
-// the boundary models, and the output schedule) so that a restart continues bit for bit. Binary, little-endian,
-// written to a temporary name and renamed.
+// the boundary models, and the output schedule) so that a restart continues
+// bit for bit. Binary, little-endian, written to a temporary name and renamed.
 #pragma once
 
 #include "talus/config.hpp"

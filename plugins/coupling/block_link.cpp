@@ -102,6 +102,9 @@ void ImpulseLedger::load_state(std::string_view bytes, const char* what) {
     if (v->size() != n)
       throw InputError(std::string("error: checkpoint: ") + what + " is for " + std::to_string(v->size()) +
                        " blocks, this scene has " + std::to_string(n));
+    for (const Vec3& x : *v)
+      if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z))
+        throw InputError(std::string("error: checkpoint: ") + what + " holds a non-finite force or impulse");
   }
   r.finish();
 }
