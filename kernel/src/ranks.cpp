@@ -54,6 +54,7 @@ class ExchangeHost final : public Host {
   void distribute(World& world) override { exchange_.scatter(stores_of(world), kStoreWeights); }
   void drop_halos(World& world) override { exchange_.drop_halos(stores_of(world)); }
   void migrate(World& world) override { exchange_.migrate(stores_of(world)); }
+  void rebalance(World& world, std::span<const float> cost) override { exchange_.balance(stores_of(world), cost); }
   void build_halos(World& world) override;
   void gather_to_root(World& world) override { exchange_.gather_to_root(stores_of(world)); }
   void release_gathered(World& world) override { exchange_.release_gathered(stores_of(world)); }
@@ -115,7 +116,7 @@ void abort_all(int code) {
   std::exit(code);
 }
 
-std::unique_ptr<Host> make_host(const World& world, double cell, double halo_reach) {
+std::unique_ptr<Host> make_host(const World& world, double cell, double halo_reach, const std::string& partition) {
   if (count() < 2) return nullptr;
   mpi::ExchangeSettings s;
   s.dim = world.dim;
@@ -124,6 +125,7 @@ std::unique_ptr<Host> make_host(const World& world, double cell, double halo_rea
   s.periodic = world.periodic;
   s.cell = cell;
   s.reach = halo_reach;
+  s.method = partition;
   return std::make_unique<ExchangeHost>(s);
 }
 
@@ -134,7 +136,7 @@ void stop() {}
 int rank() { return 0; }
 int count() { return 1; }
 void abort_all(int code) { std::exit(code); }
-std::unique_ptr<Host> make_host(const World&, double, double) { return nullptr; }
+std::unique_ptr<Host> make_host(const World&, double, double, const std::string&) { return nullptr; }
 
 #endif
 

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <memory>
+#include <span>
+#include <string>
 
 #include "talus/config.hpp"
 #include "talus/parallel.hpp"
@@ -28,6 +30,9 @@ class Host : public Parallel {
   virtual void drop_halos(World& world) = 0;
   // Moves each particle to the owner of its place.
   virtual void migrate(World& world) = 0;
+  // New cuts that share out `cost` (one per owned row: the fluid's, then the
+  // boundary store's) evenly; moves every particle to its new owner.
+  virtual void rebalance(World& world, std::span<const float> cost) = 0;
   virtual void build_halos(World& world) = 0;
   // Rank 0 holds a copy of every particle (for the writers) until release.
   virtual void gather_to_root(World& world) = 0;
@@ -35,7 +40,9 @@ class Host : public Parallel {
 };
 
 // halo_reach: the search radius plus the skin particles may move before the
-// next rebuild. Null on a single rank.
-TALUS_API std::unique_ptr<Host> make_host(const World& world, double cell, double halo_reach);
+// next rebuild; partition: Zoltan's method ("RCB", "RIB" or "HSFC"). Null on
+// a single rank.
+TALUS_API std::unique_ptr<Host> make_host(const World& world, double cell, double halo_reach,
+                                          const std::string& partition);
 
 }  // namespace talus::ranks

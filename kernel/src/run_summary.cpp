@@ -60,6 +60,8 @@ void write_summary_file(const RunSummary& r, const std::string& path) {
                                        {"imbalance", r.ranks.imbalance},
                                        {"halo_share", r.ranks.halo_share},
                                        {"rebuilds", r.ranks.rebuilds},
+                                       {"rebalances", r.ranks.rebalances},
+                                       {"cost_imbalance", r.ranks.cost_imbalance},
                                        {"peak_memory_mib_max", r.ranks.peak_memory_mib_max}}}};
   nlohmann::json stage_seconds = nlohmann::json::object();
   for (std::size_t i = 0; i < r.stages.size() && i < r.phases.stages.size(); ++i)
@@ -124,10 +126,11 @@ void print_summary(const RunSummary& r) {
               static_cast<unsigned long long>(steps), fixed(world.time, 6).c_str(), clock_text(wall).c_str(),
               wall > 0 ? steps / wall : 0.0, wall > 0 ? r.particle_steps / wall / 1e6 : 0.0, r.peak_memory_mib);
   if (r.ranks.count > 1)
-    std::printf("       %d MPI ranks: imbalance %.3f, halo %.1f %% of the owned particles, %llu rebuilds, "
-                "peak memory %.0f MiB on the largest rank\n",
-                r.ranks.count, r.ranks.imbalance, 100.0 * r.ranks.halo_share,
-                static_cast<unsigned long long>(r.ranks.rebuilds), r.ranks.peak_memory_mib_max);
+    std::printf("       %d MPI ranks: imbalance %.3f (cost %.3f at worst), halo %.1f %% of the owned particles, "
+                "%llu rebuilds, %llu rebalances, peak memory %.0f MiB on the largest rank\n",
+                r.ranks.count, r.ranks.imbalance, r.ranks.cost_imbalance, 100.0 * r.ranks.halo_share,
+                static_cast<unsigned long long>(r.ranks.rebuilds), static_cast<unsigned long long>(r.ranks.rebalances),
+                r.ranks.peak_memory_mib_max);
   if (r.wall_particle_steps > 0 && wall > 0)
     std::printf("       %.3g M particle-steps/s counting the wall particles too (as bench_wcsph and DualSPHysics do)\n",
                 static_cast<double>(r.particle_steps + r.wall_particle_steps) / wall / 1e6);

@@ -22,6 +22,8 @@ struct RankFigures {
   double imbalance = 1.0;   // the busiest rank's fluid particle-steps over the mean
   double halo_share = 0.0;  // halo rows per owned row, over all ranks and rebuilds
   std::uint64_t rebuilds = 0;  // owners and halos rebuilt (re-sort, escape, skin)
+  std::uint64_t rebalances = 0;  // new cuts after the first (cost above /ranks/rebalance_above)
+  double cost_imbalance = 1.0;   // the largest measured cost of a rank over the mean the run stepped with
   double peak_memory_mib_max = 0.0;  // the largest rank's
 };
 

@@ -122,6 +122,21 @@ ParamSet checkpoint_params() {
   return c;
 }
 
+ParamSet ranks_params() {
+  ParamSet r{"ranks", "how a run on several MPI ranks shares out the particles (read only by such a run)"};
+  r.choice("partition", {"RCB", "RIB", "HSFC"})
+      .default_value("RCB")
+      .doc("Zoltan's geometric partition: recursive coordinate bisection (boxes), recursive inertial bisection "
+           "(cuts across the principal axes) or the Hilbert space-filling curve");
+  r.real("rebalance_above")
+      .min(1.0)
+      .default_value(1.2)
+      .doc("new cuts when the busiest rank's measured cost (1 + the pairs of each of its particles) exceeds the "
+           "mean by this factor, checked whenever the halos are rebuilt (if the last cuts could not come within it: "
+           "when it has grown by this factor over what they achieved)");
+  return r;
+}
+
 ParamSet kernel_common() {
   ParamSet k{"kernel", "keys of the smoothing kernel entry"};
   k.real("h_over_dp").min(0.5).max(5.0).default_value(1.3)
@@ -146,6 +161,7 @@ ParamSet make_scene() {
   s.object("time", time_params()).doc("the time loop");
   s.model_list("outputs", "writer", output_common()).optional().doc("writers and probes");
   s.object("checkpoint", checkpoint_params()).optional().doc("restart files");
+  s.object("ranks", ranks_params()).optional().doc("the decomposition over MPI ranks (`mpirun -np N talus run`)");
   return s;
 }
 

@@ -85,6 +85,10 @@ class TALUS_API Simulation {
   void remove_flagged_particles();
   // Several MPI ranks (simulation_ranks.cpp): share the world out, keep owners and halos current.
   void spread_over_ranks(bool restart);
+  // After particles moved between ranks: cache order, halos, the wall models' rows.
+  void settle_on_ranks();
+  // Measures every owned particle's cost (cost_); the busiest rank's over the mean.
+  double cost_imbalance();
   void rebuild_ranks();
   void rank_upkeep(bool resort_due);
   void gather_for_writers();
@@ -119,6 +123,12 @@ class TALUS_API Simulation {
   std::vector<Vec3> moved_from_;        // owned positions at the last rebuild, fluid then walls
   std::size_t fluid_over_ranks_ = 0;    // fluid particles on all ranks, counted at the last rebuild
   std::uint64_t rebuilds_ = 0, owned_rows_seen_ = 0, halo_rows_seen_ = 0;  // this rank's, at each rebuild
+  double rebalance_above_ = 1.2;        // /ranks/rebalance_above
+  std::vector<float> cost_;             // each owned particle's cost, measured at the last rebuild
+  std::uint64_t rebalances_ = 0;        // new cuts after the first
+  double worst_cost_imbalance_ = 1.0;   // the largest the run stepped with
+  double cut_imbalance_ = 1.0;          // what the last new cuts achieved
+  bool rebalance_warned_ = false;
 };
 
 }  // namespace talus

@@ -8,11 +8,13 @@
 #include <cstdint>
 #include <vector>
 
+#include "rank_cost.hpp"
 #include "ranks.hpp"
 #include "run_summary.hpp"
 #include "simulation.hpp"
 #include "talus/boundary.hpp"
 #include "talus/error.hpp"
+#include "talus/number_text.hpp"
 #include "talus/periodic.hpp"
 
 namespace talus {
@@ -58,7 +60,15 @@ void Simulation::spread_over_ranks(bool restart) {
                      std::to_string(ranks::count()) + " were started); run this scene on one process");
   const double radius = world_.kernel.support_radius();
   skin_ = world_.dp;
-  ranks_ = ranks::make_host(world_, radius, radius + skin_);
+  std::string partition = "RCB";
+  if (scene_.values.has("ranks")) {
+    const ParamValues& r = scene_.values.object("ranks");
+    partition = r.string("partition");
+    rebalance_above_ = r.real("rebalance_above");
+  }
+  // Cells of one spacing: the cuts never split one, and a finer grain than
+  // the search radius lets RCB's straight cuts share out a small body evenly.
+  ranks_ = ranks::make_host(world_, skin_, radius + skin_, partition);
   world_.set_parallel(ranks_.get());
   // A restart read every particle and the run's count of removed ones on
   // every rank: rank 0 keeps the count, as each rank counts its own from here.
@@ -70,9 +80,27 @@ void Simulation::spread_over_ranks(bool restart) {
 void Simulation::rebuild_ranks() {
   ranks_->drop_halos(world_);
   ranks_->migrate(world_);
-  resort_particles();
-  ranks_->build_halos(world_);
-  wall_rows_moved();
+  settle_on_ranks();
+  double imbalance = cost_imbalance();
+  // Cuts that could not come within the threshold are made anew only when the
+  // imbalance has grown by that factor again, not at every rebuild.
+  const double trigger = cut_imbalance_ <= rebalance_above_ ? rebalance_above_ : cut_imbalance_ * rebalance_above_;
+  if (imbalance > trigger) {
+    ranks_->rebalance(world_, cost_);
+    ++rebalances_;
+    settle_on_ranks();
+    imbalance = cost_imbalance();
+    cut_imbalance_ = imbalance;
+    if (imbalance > rebalance_above_ && !rebalance_warned_) {
+      rebalance_warned_ = true;
+      world_.warnings.add("step " + std::to_string(world_.step) + ": new cuts leave the busiest of " +
+                          std::to_string(ranks_->ranks()) + " ranks " + fixed(imbalance) +
+                          " times the mean cost, above /ranks/rebalance_above (" + fixed(rebalance_above_) +
+                          "): the cuts never split a cell of one particle spacing, and a few cells here hold much "
+                          "of a rank's share; new cuts follow when the imbalance grows by that factor again");
+    }
+  }
+  worst_cost_imbalance_ = std::max(worst_cost_imbalance_, imbalance);
   ++rebuilds_;
   fluid_over_ranks_ = static_cast<std::size_t>(ranks_->sum(static_cast<std::uint64_t>(world_.fluid.owned_size())));
   owned_rows_seen_ += world_.fluid.owned_size() + world_.boundary.owned_size();
@@ -83,6 +111,21 @@ void Simulation::rebuild_ranks() {
     const auto x = store->position();
     moved_from_.insert(moved_from_.end(), x.begin(), x.begin() + static_cast<std::ptrdiff_t>(store->owned_size()));
   }
+}
+
+void Simulation::settle_on_ranks() {
+  resort_particles();
+  ranks_->build_halos(world_);
+  wall_rows_moved();
+}
+
+double Simulation::cost_imbalance() {
+  cost_ = owned_particle_costs(world_, world_.kernel.support_radius());
+  double mine = 0.0;
+  for (const float c : cost_) mine += c;
+  const double total = ranks_->sum(mine);
+  const double busiest = ranks_->max(mine);
+  return total > 0 ? busiest * ranks_->ranks() / total : 1.0;
 }
 
 void Simulation::rank_upkeep(bool resort_due) {
@@ -113,6 +156,8 @@ RankFigures Simulation::figures_over_ranks(std::uint64_t own_particle_steps) con
   const double owned = static_cast<double>(ranks_->sum(owned_rows_seen_));
   f.halo_share = owned > 0 ? static_cast<double>(ranks_->sum(halo_rows_seen_)) / owned : 0.0;
   f.rebuilds = rebuilds_;
+  f.rebalances = rebalances_;
+  f.cost_imbalance = worst_cost_imbalance_;
   f.peak_memory_mib_max = ranks_->max(peak_memory_mib());
   return f;
 }

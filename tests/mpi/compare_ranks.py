@@ -6,8 +6,15 @@ with blocks also has their last states compared, block by block: position
 and orientation to the position bound, velocity and angular velocity to the
 velocity bound, and the fluid's force and torque on them to --f-tol.
 
+With --ranks-settings JSON, the scene's "ranks" entry (partition method,
+rebalancing) is replaced by JSON in a copy written to OUTDIR, which both runs
+use; the scene must then name no file relative to itself. --min-rebalances K
+fails a run on several ranks that made fewer than K new cuts.
+
 usage: compare_ranks.py TALUS SCENE OUTDIR --ranks 2 3 --x-tol M --v-tol M/S --rho-tol KG/M3 [--f-tol N]
+                        [--ranks-settings JSON] [--min-rebalances K]
 """
+import json
 import argparse
 import os
 import subprocess
@@ -94,17 +101,34 @@ def main():
     ap.add_argument("--v-tol", type=float, required=True)
     ap.add_argument("--rho-tol", type=float, required=True)
     ap.add_argument("--f-tol", type=float, default=None, help="bound on the blocks' force and torque (N, N m)")
+    ap.add_argument("--ranks-settings", default=None, help="the scene's \"ranks\" entry, as JSON")
+    ap.add_argument("--min-rebalances", type=int, default=0, help="fail unless each run made this many new cuts")
     a = ap.parse_args()
     name = os.path.splitext(os.path.basename(a.scene))[0]
+    if a.ranks_settings is not None:
+        with open(a.scene) as f:
+            scene = json.load(f)
+        scene["ranks"] = json.loads(a.ranks_settings)
+        os.makedirs(a.outdir, exist_ok=True)
+        a.scene = os.path.join(a.outdir, name + ".json")
+        with open(a.scene, "w") as f:
+            json.dump(scene, f, indent=1)
     serial_out = os.path.join(a.outdir, "serial")
     run([a.talus, "run", a.scene], serial_out)
     step0, ref = last_step(os.path.join(serial_out, name + ".h5part"))
     failed = False
     for n in a.ranks:
         out = os.path.join(a.outdir, f"ranks{n}")
-        run(mpirun(n) + [a.talus, "run", a.scene], out)
+        summary = os.path.join(a.outdir, f"ranks{n}.summary.json")
+        run(mpirun(n) + [a.talus, "run", a.scene, "--summary", summary], out)
         step, got = last_step(os.path.join(out, name + ".h5part"))
         failed |= not compare(f"{n} ranks", step0, ref, step, got, (a.x_tol, a.v_tol, a.rho_tol, a.f_tol))
+        with open(summary) as f:
+            r = json.load(f)["ranks"]
+        enough = r["rebalances"] >= a.min_rebalances
+        print(f"{n} ranks: {r['rebalances']} rebalances in {r['rebuilds']} rebuilds, cost imbalance "
+              f"{r['cost_imbalance']:.3f} at worst{'' if enough else f', fewer than {a.min_rebalances}: FAIL'}")
+        failed |= not enough
     sys.exit(1 if failed else 0)
 
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "mpi/rank_exchange.hpp"
@@ -30,8 +31,9 @@ void fill_lattice(ParticleStore& store, int dim, int n) {
         x[k++] = {(a + 0.5) * kSpacing, (b + 0.5) * kSpacing, dim == 3 ? (c + 0.5) * kSpacing : 0.0};
 }
 
-ExchangeSettings settings_for(int dim, int n, bool periodic_x, double reach) {
+ExchangeSettings settings_for(int dim, int n, bool periodic_x, double reach, const std::string& method = "RCB") {
   ExchangeSettings s;
+  s.method = method;
   s.dim = dim;
   s.lo = {0, 0, 0};
   s.hi = {n * kSpacing, n * kSpacing, dim == 3 ? n * kSpacing : 0.0};
@@ -56,6 +58,14 @@ std::vector<std::uint64_t> all_owned_ids(const ParticleStore& store) {
   MPI_Allgatherv(store.ids().data(), owned, MPI_UINT64_T, ids.data(), counts.data(), at.data(), MPI_UINT64_T,
                  MPI_COMM_WORLD);
   return ids;
+}
+
+// Every particle of the whole lattice is owned by exactly one rank.
+void expect_one_owner_each(const ParticleStore& store, const ParticleStore& whole) {
+  auto ids = all_owned_ids(store);
+  std::sort(ids.begin(), ids.end());
+  ASSERT_EQ(ids.size(), whole.size());
+  for (std::size_t k = 0; k < ids.size(); ++k) ASSERT_EQ(ids[k], k);
 }
 
 double distance(const Vec3& a, const Vec3& b, const ExchangeSettings& s) {
@@ -86,13 +96,14 @@ int missing_neighbours(const ParticleStore& store, const ParticleStore& whole, d
   return missing;
 }
 
-class RankExchangeTest : public ::testing::TestWithParam<std::tuple<int, bool>> {};
+// Dimension, periodic x, Zoltan's method.
+class RankExchangeTest : public ::testing::TestWithParam<std::tuple<int, bool, std::string>> {};
 
 TEST_P(RankExchangeTest, EveryParticleHasOneOwnerAndEveryNeighbourIsThere) {
-  const auto [dim, periodic] = GetParam();
+  const auto [dim, periodic, method] = GetParam();
   const int n = dim == 3 ? 12 : 30;
   const double radius = 2.0 * kSpacing, skin = 0.5 * kSpacing;
-  const ExchangeSettings s = settings_for(dim, n, periodic, radius + skin);
+  const ExchangeSettings s = settings_for(dim, n, periodic, radius + skin, method);
   ParticleStore store, whole;
   fill_lattice(store, dim, n);
   fill_lattice(whole, dim, n);
@@ -103,10 +114,7 @@ TEST_P(RankExchangeTest, EveryParticleHasOneOwnerAndEveryNeighbourIsThere) {
   exchange.build_halos(stores);
 
   // One owner each.
-  auto ids = all_owned_ids(store);
-  std::sort(ids.begin(), ids.end());
-  ASSERT_EQ(ids.size(), whole.size());
-  for (std::size_t k = 0; k < ids.size(); ++k) ASSERT_EQ(ids[k], k);
+  expect_one_owner_each(store, whole);
   // Balanced: Zoltan's tolerance is 10 %; a lattice splits within one cell row.
   const double share = static_cast<double>(store.owned_size()) * exchange.ranks() / static_cast<double>(whole.size());
   EXPECT_LT(std::abs(share - 1.0), 0.25) << "rank " << exchange.rank() << " owns " << store.owned_size();
@@ -139,10 +147,7 @@ TEST_P(RankExchangeTest, EveryParticleHasOneOwnerAndEveryNeighbourIsThere) {
   // Migration by the same cuts, then a new halo: still one owner each and nothing missing.
   exchange.migrate(stores);
   exchange.build_halos(stores);
-  ids = all_owned_ids(store);
-  std::sort(ids.begin(), ids.end());
-  ASSERT_EQ(ids.size(), whole.size());
-  for (std::size_t k = 0; k < ids.size(); ++k) ASSERT_EQ(ids[k], k);
+  expect_one_owner_each(store, whole);
   EXPECT_EQ(missing_neighbours(store, whole, radius, s), 0);
   // Every field travelled with its particle.
   for (std::size_t i = 0; i < store.owned_size(); ++i)
@@ -182,8 +187,52 @@ TEST(RankExchangeGather, RankZeroHoldsEveryParticleUntilReleased) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Lattices, RankExchangeTest,
-                         ::testing::Values(std::tuple{2, false}, std::tuple{2, true}, std::tuple{3, false},
-                                           std::tuple{3, true}));
+                         ::testing::Combine(::testing::Values(2, 3), ::testing::Bool(),
+                                            ::testing::Values("RCB", "RIB", "HSFC")));
+
+// New cuts by a cost that is not uniform: a corner square of the lattice (9 %
+// of it) costs ten times the rest. Each rank's cost comes within Zoltan's tolerance and a cell
+// of the mean (it never splits a cell), one owner each, nothing missing.
+class RankExchangeBalance : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(RankExchangeBalance, UnevenCostIsSharedOutEvenly) {
+  const int n = 30;
+  const double radius = 2.0 * kSpacing;
+  const ExchangeSettings s = settings_for(2, n, false, radius + 0.5 * kSpacing, GetParam());
+  ParticleStore store, whole;
+  fill_lattice(store, 2, n);
+  fill_lattice(whole, 2, n);
+  RankExchange exchange(MPI_COMM_WORLD, s);
+  ParticleStore* stores[] = {&store};
+  const float weights[] = {1.0f};
+  exchange.scatter(stores, weights);
+  const double corner = 0.3 * n * kSpacing;
+  auto cost_of = [&](const Vec3& x) { return x.x < corner && x.y < corner ? 10.0f : 1.0f; };
+  double total = 0.0;
+  for (const Vec3& x : whole.position()) total += cost_of(x);
+  const double mean = total / exchange.ranks();
+  auto busiest_cost = [&] {
+    double mine = 0.0, busiest = 0.0;
+    for (std::size_t i = 0; i < store.owned_size(); ++i) mine += cost_of(store.position()[i]);
+    MPI_Allreduce(&mine, &busiest, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+    return busiest;
+  };
+  // Cut by particle count, the rank with the dear corner carries far more than the mean.
+  if (exchange.ranks() > 1) EXPECT_GT(busiest_cost() / mean, 1.3);
+
+  std::vector<float> cost;
+  for (const Vec3& x : store.position()) cost.push_back(cost_of(x));
+  exchange.balance(stores, cost);
+  exchange.build_halos(stores);
+
+  expect_one_owner_each(store, whole);
+  EXPECT_EQ(missing_neighbours(store, whole, radius, s), 0);
+  // Within Zoltan's 10 % and one cell (2 x 2 particles here) of the dearest kind.
+  const double cell_cost = 4 * 10.0;
+  EXPECT_LT(busiest_cost(), 1.1 * mean + cell_cost);
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, RankExchangeBalance, ::testing::Values("RCB", "RIB", "HSFC"));
 
 TEST(RankExchangeReductions, SumInRankOrderGivesTheSameBitsEverywhere) {
   RankExchange exchange(MPI_COMM_WORLD, settings_for(2, 4, false, 0.1));

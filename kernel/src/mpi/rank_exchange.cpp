@@ -89,7 +89,9 @@ Vec3 RankExchange::cell_centre(const Vec3& x) const {
 }
 
 void RankExchange::scatter(std::span<ParticleStore* const> stores, std::span<const float> weights) {
-  for (ParticleStore* store : stores) {
+  std::vector<float> cost;
+  for (std::size_t s = 0; s < stores.size(); ++s) {
+    ParticleStore* store = stores[s];
     store->drop_halo();
     const std::size_t n = store->size();
     const std::size_t first = n * static_cast<std::size_t>(rank_) / nranks();
@@ -97,19 +99,17 @@ void RankExchange::scatter(std::span<ParticleStore* const> stores, std::span<con
     std::vector<std::uint8_t> drop(n, 1);
     std::fill(drop.begin() + static_cast<std::ptrdiff_t>(first), drop.begin() + static_cast<std::ptrdiff_t>(last), 0);
     store->remove_if(drop);
+    cost.insert(cost.end(), store->size(), weights[s]);
   }
-  balance(stores, weights);
+  balance(stores, cost);
 }
 
-void RankExchange::balance(std::span<ParticleStore* const> stores, std::span<const float> weights) {
+void RankExchange::balance(std::span<ParticleStore* const> stores, std::span<const float> cost) {
   drop_halos(stores);
   std::vector<Vec3> places;
-  std::vector<float> cost;
-  for (std::size_t s = 0; s < stores.size(); ++s) {
-    const auto x = stores[s]->position();
-    for (const Vec3& p : x) places.push_back(cell_centre(p));
-    cost.insert(cost.end(), x.size(), weights[s]);
-  }
+  for (ParticleStore* store : stores)
+    for (const Vec3& p : store->position()) places.push_back(cell_centre(p));
+  if (cost.size() != places.size()) throw std::logic_error("RankExchange::balance: a cost for every owned row");
   const std::vector<int> owner = cuts_.partition(places, cost);
   std::size_t at = 0;
   for (ParticleStore* store : stores) {

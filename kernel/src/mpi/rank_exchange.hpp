@@ -24,7 +24,7 @@ struct ExchangeSettings {
   int dim = 3;
   Vec3 lo{}, hi{};  // the domain
   std::array<bool, 3> periodic{};
-  double cell = 0.0;   // the cuts keep cells of this size whole (the search radius)
+  double cell = 0.0;   // the cuts keep cells of this size whole
   double reach = 0.0;  // halo width: the search radius plus the skin particles may move before the next rebuild
   std::string method = "RCB";
   double imbalance = 1.1;
@@ -47,8 +47,9 @@ class TALUS_API RankExchange final : public Parallel {
   // order: keeps this rank's share, then balances. weights: cost of one
   // particle of each store.
   void scatter(std::span<ParticleStore* const> stores, std::span<const float> weights);
-  // New cuts from the particles' places; moves every particle to its new owner.
-  void balance(std::span<ParticleStore* const> stores, std::span<const float> weights);
+  // New cuts from the particles' places and costs (one per owned row, the
+  // stores' rows in turn); moves every particle to its new owner.
+  void balance(std::span<ParticleStore* const> stores, std::span<const float> cost);
   // Moves every particle to the owner of its place under the current cuts.
   void migrate(std::span<ParticleStore* const> stores);
   // Drops every halo, then copies each owned particle within `reach` of another

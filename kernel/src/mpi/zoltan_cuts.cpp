@@ -88,13 +88,15 @@ std::vector<int> ZoltanCuts::partition(std::span<const Vec3> points, std::span<c
   points_ = {};
   weights_ = {};
   check(code, "Zoltan_LB_Partition");
-  // RETURN_LISTS = PARTS: the export list names every local object's part.
-  std::vector<int> owner(points.size(), rank_);
-  for (int k = 0; k < exports; ++k) owner[export_lids[k]] = export_procs[k];
   Zoltan_LB_Free_Part(&import_gids, &import_lids, &import_procs, &import_parts);
   Zoltan_LB_Free_Part(&export_gids, &export_lids, &export_procs, &export_parts);
   has_cuts_ = true;
-  return owner;
+  // Each point goes where the kept cuts place it, not where the partition's
+  // lists send it: RIB and HSFC may split points of one place between parts,
+  // and the halos (ranks_meeting) and later moves (owner) know only the cuts.
+  std::vector<int> owners(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) owners[i] = owner(points[i]);
+  return owners;
 }
 
 int ZoltanCuts::owner(const Vec3& point) const {
