@@ -89,6 +89,8 @@ class TALUS_API Simulation {
   void settle_on_ranks();
   // Measures every owned particle's cost (cost_); the busiest rank's over the mean.
   double cost_imbalance();
+  // The busiest rank's share over the mean share of what each rank has.
+  double imbalance_over_ranks(double mine) const;
   void rebuild_ranks();
   void rank_upkeep(bool resort_due);
   void gather_for_writers();

@@ -123,6 +123,10 @@ double Simulation::cost_imbalance() {
   cost_ = owned_particle_costs(world_, world_.kernel.support_radius());
   double mine = 0.0;
   for (const float c : cost_) mine += c;
+  return imbalance_over_ranks(mine);
+}
+
+double Simulation::imbalance_over_ranks(double mine) const {
   const double total = ranks_->sum(mine);
   const double busiest = ranks_->max(mine);
   return total > 0 ? busiest * ranks_->ranks() / total : 1.0;
@@ -150,9 +154,7 @@ void Simulation::rank_upkeep(bool resort_due) {
 RankFigures Simulation::figures_over_ranks(std::uint64_t own_particle_steps) const {
   RankFigures f;
   f.count = ranks_->ranks();
-  const double total = static_cast<double>(ranks_->sum(own_particle_steps));
-  const double busiest = ranks_->max(static_cast<double>(own_particle_steps));
-  f.imbalance = total > 0 ? busiest * f.count / total : 1.0;
+  f.imbalance = imbalance_over_ranks(static_cast<double>(own_particle_steps));
   const double owned = static_cast<double>(ranks_->sum(owned_rows_seen_));
   f.halo_share = owned > 0 ? static_cast<double>(ranks_->sum(halo_rows_seen_)) / owned : 0.0;
   f.rebuilds = rebuilds_;
