@@ -61,6 +61,9 @@ ParamSet body_params() {
   b.integer("layers").min(1).optional().doc("wall: layers of wall particles (default: enough to cover the kernel)");
   b.real("density").unit("kg/m^3").greater_than(0.0).optional().doc("block: density of the rock");
   b.boolean("fixed").default_value(false).doc("block: never moves (bedrock, walls)");
+  b.string("clump").optional().doc(
+      "block: blocks with the same clump name move as one rigid body (a non-convex block made of convex pieces, "
+      "e.g. a landslide mass cut into columns); no contacts are sought between them");
   b.vector("angular_velocity").unit("rad/s").length(3).default_value(std::vector<double>{0.0, 0.0, 0.0}).doc("block: initial angular velocity");
   b.model("contact", "contact").optional().doc("block: contact model of its faces");
   PrescribedMotion::declare(b);
@@ -84,11 +87,13 @@ ParamSet body_params() {
       forbid("contact");
       forbid("density");
       forbid("motion");
+      forbid("clump");
     } else if (kind == "wall") {
       need("dp", "a particle spacing \"dp\"");
       need("boundary", "a \"boundary\" model");
       forbid("contact");
       forbid("density");
+      forbid("clump");
     } else {
       need("density", "a rock \"density\"");
       forbid("dp");

@@ -18,6 +18,10 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
+// Largest gap, as a fraction of the contact margin, at which faces count as
+// touching when the run starts (coordinates typed with 7 to 9 digits).
+constexpr double bond_gap = 0.01;
+
 double sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
 
 std::string format(const char* fmt, double v) {
@@ -62,7 +66,7 @@ void DdaStage::setup(World& world) {
   scratch_.assign(threads, {});
   pose_blocks(b);
   detect(b, true);
-  update_time_step(b);
+  update_time_step();
   update_energy(world, b);
 }
 
@@ -136,10 +140,12 @@ void DdaStage::build_blocks(World& world) {
     motion_.push_back(std::move(motion));
     start_position_.push_back(b.position.back());
   }
+  build_clumps(world, b);
   const std::size_t n = b.size();
   force_.assign(n, {});
   torque_.assign(n, {});
   stiffness_sum_.assign(n, 0.0);
+  inertia_scale_.assign(n, 1.0);
   posed_.assign(n, {});
   box_lo_.assign(n, {});
   box_hi_.assign(n, {});
@@ -209,6 +215,7 @@ void DdaStage::detect(const BlockSet& b, bool initial) {
 #pragma omp for schedule(static)
     for (std::size_t k = 0; k < npairs; ++k) {
       const auto [i, j] = pairs_[k];
+      if (lead_[i] == lead_[j]) continue;  // two blocks of one clump
       points.clear();
       collide(posed_[i], posed_[j], margin_, points, scratch);
       for (const auto& cp : points) out.push_back({cp, i, j});
@@ -232,7 +239,8 @@ void DdaStage::detect(const BlockSet& b, bool initial) {
     contacts_.normal[c] = cp.normal;
     contacts_.gap[c] = cp.gap;
     contacts_.area[c] = cp.area;
-    const double inverse_sum = inverse_mass_[f.a] + inverse_mass_[f.b];
+    const std::uint32_t la = lead_[f.a], lb = lead_[f.b];
+    const double inverse_sum = inverse_mass_[la] / inertia_scale_[la] + inverse_mass_[lb] / inertia_scale_[lb];
     contacts_.mass[c] = 1.0 / (inverse_sum * cp.manifold_size);
     contacts_.velocity[c] = b.velocity_at(f.b, cp.point) - b.velocity_at(f.a, cp.point);
   }
@@ -242,6 +250,12 @@ void DdaStage::detect(const BlockSet& b, bool initial) {
         return initial ? models_[model]->initial_state() : static_cast<std::uint8_t>(contact_open);
       },
       margin_);
+  // A bond joins faces that touch at the start. Faces merely within the margin
+  // (a gap the scene meant, not rounding) start unbonded: a bond across a gap
+  // would pull them together with k_n times the gap.
+  if (initial)
+    for (std::size_t c = 0; c < n; ++c)
+      if (contacts_.gap[c] > bond_gap * margin_) contacts_.state[c] &= static_cast<std::uint8_t>(~contact_bonded);
   model_begin_.assign(models_.size() + 1, n);
   for (std::size_t c = n; c-- > 0;) model_begin_[contacts_.key[c].model] = c;
   for (std::size_t m = models_.size(); m-- > 0;) model_begin_[m] = std::min(model_begin_[m], model_begin_[m + 1]);
@@ -280,12 +294,28 @@ void DdaStage::integrate(World& world, BlockSet& b, double t, double h) {
   std::size_t dynamic_count = 0;
   const std::size_t n = b.size();
   for (std::size_t i = 0; i < n; ++i) {
-    if (!dynamic_[i]) continue;
-    Vec3 force = b.mass[i] * g + b.external_force[i] + force_[i];
-    Vec3 torque = b.external_torque[i] + torque_[i];
-    const Vec3 v_old = b.velocity[i], w_old = b.angular_velocity[i], l_old = momentum_[i];
-    unbalanced = std::max({unbalanced, norm(force), norm(torque) / b.shape[i].radius});
-    weight += b.mass[i] * norm(g);
+    if (!dynamic_[i] || lead_[i] != i) continue;
+    // The body's centroid, and the forces on its blocks summed about it (for
+    // a block on its own the centroid is the block's and the arms are zero).
+    const Quaternion q = b.orientation[i];
+    const Vec3 centre = b.position[i] - rotate(q, offset_[i]);
+    Vec3 force{}, torque{}, applied{}, applied_torque{};
+    double mass = 0.0;
+    for (std::uint32_t k = member_begin_[i]; k < member_begin_[i + 1]; ++k) {
+      const std::uint32_t m = members_[k];
+      const Vec3 arm = b.position[m] - centre;
+      const Vec3 f = b.mass[m] * g + b.external_force[m] + force_[m];
+      force += f;
+      torque += b.external_torque[m] + torque_[m] + cross(arm, f);
+      applied += b.external_force[m];
+      applied_torque += b.external_torque[m] + cross(arm, b.external_force[m]);
+      mass += b.mass[m];
+      potential -= b.mass[m] * dot(g, b.position[m]);
+    }
+    const Vec3 w_old = b.angular_velocity[i], l_old = momentum_[i];
+    const Vec3 v_old = b.velocity[i] - cross(w_old, b.position[i] - centre);
+    unbalanced = std::max({unbalanced, norm(force), norm(torque) / body_radius_[i]});
+    weight += mass * norm(g);
     ++dynamic_count;
     Vec3 damping_force{}, damping_torque{};
     if (local_damping_ > 0.0)
@@ -295,35 +325,40 @@ void DdaStage::integrate(World& world, BlockSet& b, double t, double h) {
       }
     force += damping_force;
     torque += damping_torque;
-    b.velocity[i] += (kick * inverse_mass_[i]) * force;
+    const double scale = inertia_scale_[i];
+    const Vec3 v = v_old + (kick * inverse_mass_[i] / scale) * force;
     momentum_[i] += kick * torque;
     // Energies at the time of the forces, t: the leapfrog's synchronous
     // kinetic energy 1/2 m v(t-h/2).v(t+h/2) (exactly conserved with the
     // potential at t for linear forces); at the start v(-h/2) = 2 v(0) - v(h/2).
-    const Vec3 v_before = started_ ? v_old : 2.0 * v_old - b.velocity[i];
-    kinetic += 0.5 * b.mass[i] * dot(v_before, b.velocity[i]);
-    potential -= b.mass[i] * dot(g, b.position[i]);
-    work += dot(b.external_force[i], 0.5 * (v_before + b.velocity[i])) * h;
+    const Vec3 v_before = started_ ? v_old : 2.0 * v_old - v;
+    kinetic += 0.5 * scale * mass * dot(v_before, v);
+    work += dot(applied, 0.5 * (v_before + v)) * h;
     // w(i+1/2) = I^-1 L(i+1/2) with the inertia at the mid-step orientation
     // (two fixed-point passes from the previous w).
-    Quaternion q = b.orientation[i];
-    Vec3 w = b.angular_velocity[i];
+    Vec3 w = w_old;
     for (int pass = 0; pass < 2; ++pass) {
       const Quaternion mid = normalised(from_rotation_vector((0.5 * h) * w) * q);
-      w = rotate(mid, multiply(inverse_inertia_[i], rotate_inverse(mid, momentum_[i])));
+      w = rotate(mid, multiply(inverse_inertia_[i], rotate_inverse(mid, momentum_[i]))) / scale;
     }
-    b.angular_velocity[i] = w;
     const Vec3 w_before = started_ ? w_old : 2.0 * w_old - w;
     const Vec3 l_before = started_ ? l_old : 2.0 * l_old - momentum_[i];
     kinetic += 0.25 * (dot(w_before, momentum_[i]) + dot(w, l_before));
-    work += dot(b.external_torque[i], 0.5 * (w_before + w)) * h;
-    damped -= (dot(damping_force, 0.5 * (v_before + b.velocity[i])) + dot(damping_torque, 0.5 * (w_before + w))) * h;
-    b.position[i] += h * b.velocity[i];
-    b.orientation[i] = normalised(from_rotation_vector(h * w) * q);
-    if (!is_finite(b.position[i]) || !is_finite(w))
+    work += dot(applied_torque, 0.5 * (w_before + w)) * h;
+    damped -= (dot(damping_force, 0.5 * (v_before + v)) + dot(damping_torque, 0.5 * (w_before + w))) * h;
+    const Vec3 moved = centre + h * v;
+    const Quaternion turned = normalised(from_rotation_vector(h * w) * q);
+    if (!is_finite(moved) || !is_finite(w))
       throw RunError("step " + std::to_string(world.step) + " (t = " + format("%.6g", t) + " s): block '" +
                      b.name[i] + "' has a non-finite position or angular velocity; the time step is too large "
                      "for the contact stiffness or the contacts exploded");
+    for (std::uint32_t k = member_begin_[i]; k < member_begin_[i + 1]; ++k) {
+      const std::uint32_t m = members_[k];
+      b.position[m] = moved + rotate(turned, offset_[m]);
+      b.orientation[m] = turned;
+      b.velocity[m] = v + cross(w, b.position[m] - moved);
+      b.angular_velocity[m] = w;
+    }
   }
   for (std::size_t i = 0; i < n; ++i)
     if (b.kinematic[i]) {
@@ -360,7 +395,7 @@ void DdaStage::move_kinematic(BlockSet& b, double t) {
   }
 }
 
-void DdaStage::update_time_step(const BlockSet& b) {
+void DdaStage::update_time_step() {
   double k_max = 0.0, xi = 0.0;
   for (const ContactModel* m : models_) {
     k_max = std::max(k_max, m->max_stiffness());
@@ -370,12 +405,23 @@ void DdaStage::update_time_step(const BlockSet& b) {
   for (std::size_t c = 0; c < contacts_.size(); ++c) {
     const auto& k = contacts_.key[c];
     const double stiffness = models_[k.model]->max_stiffness();
-    stiffness_sum_[k.a] += stiffness * (dynamic_[k.b] ? 2.0 : 1.0);
-    stiffness_sum_[k.b] += stiffness * (dynamic_[k.a] ? 2.0 : 1.0);
+    stiffness_sum_[lead_[k.a]] += stiffness * (dynamic_[k.b] ? 2.0 : 1.0);
+    stiffness_sum_[lead_[k.b]] += stiffness * (dynamic_[k.a] ? 2.0 : 1.0);
   }
-  double omega2 = 0.0;
-  for (std::size_t i = 0; i < b.size(); ++i)
-    if (dynamic_[i]) omega2 = std::max(omega2, agility_[i] * std::max(stiffness_sum_[i], 8.0 * k_max));
+  // Each dynamic body's own bound on omega^2; with mass scaling every body
+  // takes the inertia that brings its own to the slowest body's.
+  double omega2 = 0.0, slowest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < dynamic_.size(); ++i)
+    if (dynamic_[i] && lead_[i] == i) {
+      stiffness_sum_[i] = agility_[i] * std::max(stiffness_sum_[i], 8.0 * k_max);
+      omega2 = std::max(omega2, stiffness_sum_[i]);
+      slowest = std::min(slowest, stiffness_sum_[i]);
+    }
+  if (mass_scaling_ && omega2 > 0.0) {
+    for (std::size_t i = 0; i < dynamic_.size(); ++i)
+      if (dynamic_[i] && lead_[i] == i) inertia_scale_[i] = std::max(inertia_scale_[i], stiffness_sum_[i] / slowest);
+    omega2 = slowest;
+  }
   dt_stable_ = omega2 > 0.0 ? safety_ * 2.0 / std::sqrt(omega2) * (std::sqrt(1.0 + xi * xi) - xi)
                             : std::numeric_limits<double>::infinity();
 }
@@ -384,8 +430,13 @@ void DdaStage::update_energy(World& world, BlockSet& b) {
   double kinetic = 0.0, potential = 0.0;
   for (std::size_t i = 0; i < b.size(); ++i) {
     if (!dynamic_[i]) continue;
-    kinetic += 0.5 * b.mass[i] * norm2(b.velocity[i]) + 0.5 * dot(b.angular_velocity[i], momentum_[i]);
     potential -= b.mass[i] * dot(world.gravity, b.position[i]);
+    if (lead_[i] != i) continue;
+    double mass = 0.0;
+    for (std::uint32_t k = member_begin_[i]; k < member_begin_[i + 1]; ++k) mass += b.mass[members_[k]];
+    const Vec3 arm = rotate(b.orientation[i], offset_[i]);  // from the body's centroid to the lead's
+    const Vec3 v = b.velocity[i] - cross(b.angular_velocity[i], arm);
+    kinetic += 0.5 * inertia_scale_[i] * mass * norm2(v) + 0.5 * dot(b.angular_velocity[i], momentum_[i]);
   }
   b.energy.kinetic = kinetic;
   b.energy.potential = potential;
@@ -399,7 +450,7 @@ void DdaStage::step(World& world, BlockSet& b, double t, double h) {
   contact_forces(b, h);
   auto t2 = Clock::now();
   integrate(world, b, t, h);
-  update_time_step(b);
+  update_time_step();
   timing_.detection += std::chrono::duration<double>(t1 - t0).count();
   timing_.forces += std::chrono::duration<double>(t2 - t1).count();
   timing_.integration += seconds_since(t2);

@@ -8,7 +8,10 @@
 //   3. central differences (seed eqs. 5-6): v(i+1/2) = v(i-1/2) + dt F/m,
 //      x(i+1) = x(i) + dt v(i+1/2); angular momentum likewise, and the
 //      orientation updated exactly by the quaternion of the rotation vector
-//      w dt, w = I(t)^-1 L taken at the mid-step orientation.
+//      w dt, w = I(t)^-1 L taken at the mid-step orientation. The rigid
+//      bodies integrated are the free blocks, except that the blocks of a
+//      clump (the scene's "clump" name) move as one non-convex body, with no
+//      contacts between them (clumps.cpp).
 // Time step (seed eq. 8): dt = safety * 2/w_max * (sqrt(1 + xi^2) - xi), with
 // w_max^2 bounded (Gershgorin) by J_i sum_c k_c (1 + [other block moves]),
 // J_i = 1/m_i + R_i^2/I_min,i, over each block's contact points, and at least
@@ -59,16 +62,26 @@ class DdaStage final : public Stage {
   // Cundall 1987) removes alpha |F_k| sgn(v_k) from every component of each
   // dynamic block's force and torque; 0 (the default) is undamped dynamics.
   void set_local_damping(double alpha) { local_damping_ = alpha; }
+  // Quasi-static use: mass scaling (3DEC's density scaling for static
+  // solutions) gives each dynamic block the inertia (mass and rotational
+  // inertia times one factor >= 1) that brings its own stable frequency down
+  // to the slowest block's, so small blocks do not set the step. Gravity keeps
+  // the true mass: equilibria are unchanged, only the path to them is not.
+  void set_mass_scaling(bool on) { mass_scaling_ = on; }
   // One stable step from world.time (the host clock is not advanced).
   void relax_step(World& world);
   // Sets every block's velocity and angular momentum to zero and restarts the
   // leapfrog with a half kick (a trial restored from a saved state).
   void stop_blocks(World& world);
-  // Largest unbalanced force or torque/radius of a dynamic block at the last
-  // step, over the mean weight of the dynamic blocks (3DEC's ratio).
+  // Largest unbalanced force or torque/radius of a dynamic body (a block or a
+  // clump) at the last step, over the mean weight of the dynamic bodies
+  // (3DEC's ratio).
   double unbalanced_ratio() const { return unbalanced_ratio_; }
   double contact_margin() const { return margin_; }
   const std::vector<ContactModel*>& models() const { return models_; }
+  // Per block: the block that carries the state of its rigid body (itself,
+  // or the first block of its clump).
+  const std::vector<std::uint32_t>& rigid_body() const { return lead_; }
 
   // Introspection for tests and benchmarks.
   double own_time_step() const { return dt_stable_; }
@@ -82,13 +95,14 @@ class DdaStage final : public Stage {
 
  private:
   void build_blocks(World& world);
+  void build_clumps(const World& world, BlockSet& b);
   void step(World& world, BlockSet& b, double t, double h);
   void pose_blocks(BlockSet& b);
   void detect(const BlockSet& b, bool initial);
   void contact_forces(BlockSet& b, double h);
   void integrate(World& world, BlockSet& b, double t, double h);
   void move_kinematic(BlockSet& b, double t);
-  void update_time_step(const BlockSet& b);
+  void update_time_step();
   void update_energy(World& world, BlockSet& b);
   void check_restored(const BlockEnergy& energy) const;
 
@@ -98,6 +112,7 @@ class DdaStage final : public Stage {
   bool subcycle_ = false;
   double margin_ = -1.0;  // < 0: 1% of the smallest block radius
   double local_damping_ = 0.0;
+  bool mass_scaling_ = false;
   double unbalanced_ratio_ = 0.0;
 
   // Contact models: one per block (index into models_), and the distinct ones.
@@ -111,6 +126,14 @@ class DdaStage final : public Stage {
   std::vector<std::array<double, 9>> inverse_inertia_;  // body frame
   std::vector<double> agility_;                  // J = 1/m + R^2/I_min
   std::vector<Vec3> momentum_;                   // angular momentum, world frame, at the last half step
+  // Rigid bodies. A body's mass properties, momentum and inertia scale sit at
+  // its lead block (inverse_mass_, inverse_inertia_, agility_, momentum_,
+  // inertia_scale_ are zero or one at the other blocks of a clump); its
+  // centroid follows from the lead's pose, so checkpoints need nothing more.
+  std::vector<std::uint32_t> lead_;              // per block: its body's lead block
+  std::vector<std::uint32_t> member_begin_, members_;  // per block: the blocks of the body it leads (CSR)
+  std::vector<Vec3> offset_;                     // per block: centroid from its body's centroid, body frame
+  std::vector<double> body_radius_;              // per lead: farthest point of its body from the centroid
   std::vector<PrescribedMotion> motion_;
   std::vector<Vec3> start_position_;
   std::vector<Vec3> force_, torque_;
@@ -136,7 +159,8 @@ class DdaStage final : public Stage {
   std::vector<Fresh> gathered_;
   ContactSet contacts_, previous_;
   std::vector<std::size_t> model_begin_;          // contacts_ range of each model
-  std::vector<double> stiffness_sum_;             // per block, for the time step
+  std::vector<double> stiffness_sum_;             // per block: its contact stiffness, then its omega^2 bound
+  std::vector<double> inertia_scale_;             // per block: inertia over the true one (1 without mass scaling)
 
   BlockEnergy* energy_ = nullptr;  // world.blocks->energy, for checkpoints
   double dt_stable_ = std::numeric_limits<double>::infinity();

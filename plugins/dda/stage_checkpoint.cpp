@@ -3,6 +3,7 @@
 // state fits this scene before any contact loop reads it.
 #include "dda_stage.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -89,6 +90,10 @@ void DdaStage::load_state(std::string_view bytes) {
   archive_contacts(r, contacts_);
   r.finish();
   check_restored(energy);
+  if (mass_scaling_) {  // the inertia scales follow from the restored contacts alone
+    std::fill(inertia_scale_.begin(), inertia_scale_.end(), 1.0);
+    update_time_step();
+  }
 }
 
 // A stage state that is intact but wrong must not reach the contact loops,

@@ -52,7 +52,7 @@ void write_group(hid_t file, const char* name, const LimitState& s, const std::s
 }  // namespace
 
 LimitState capture(const TrialResult& trial, const dda::ContactSet& c, const BlockSet& blocks,
-                   const std::vector<Vec3>& start_position) {
+                   const std::vector<Vec3>& start_position, const std::vector<std::uint32_t>& rigid_body) {
   LimitState s;
   s.present = true;
   s.factor = trial.factor;
@@ -76,7 +76,7 @@ LimitState capture(const TrialResult& trial, const dda::ContactSet& c, const Blo
   s.orientation = blocks.orientation;
   for (std::size_t i = 0; i < blocks.size(); ++i) s.displacement.push_back(blocks.position[i] - start_position[i]);
   s.released.assign(blocks.size(), 0);
-  for (const std::uint32_t i : released_blocks(blocks, c).blocks) s.released[i] = 1;
+  for (const std::uint32_t i : released_blocks(blocks, c, rigid_body).blocks) s.released[i] = 1;
   return s;
 }
 

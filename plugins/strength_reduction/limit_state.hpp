@@ -29,8 +29,9 @@ struct LimitState {
   std::vector<std::uint8_t> released;  // per block: held by open or slipping joints only
 };
 
+// rigid_body: as for released_blocks.
 LimitState capture(const TrialResult& trial, const dda::ContactSet& contacts, const BlockSet& blocks,
-                   const std::vector<Vec3>& start_position);
+                   const std::vector<Vec3>& start_position, const std::vector<std::uint32_t>& rigid_body);
 
 // Groups /stable and /failed (each when present), block names at the root.
 // Written to `path`.tmp and renamed.

@@ -17,12 +17,14 @@ struct UnionFind {
 
 }  // namespace
 
-Release released_blocks(const BlockSet& blocks, const dda::ContactSet& contacts) {
+Release released_blocks(const BlockSet& blocks, const dda::ContactSet& contacts,
+                        const std::vector<std::uint32_t>& rigid_body) {
   const std::size_t n = blocks.size();
   // Node n stands for the ground: every block that does not move by forces.
   UnionFind sets(n + 1);
   for (std::size_t i = 0; i < n; ++i)
     if (blocks.fixed[i] || blocks.kinematic[i]) sets.join(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(n));
+  for (std::size_t i = 0; i < n; ++i) sets.join(static_cast<std::uint32_t>(i), rigid_body[i]);
   for (std::size_t c = 0; c < contacts.size(); ++c)
     if ((contacts.state[c] & dda::contact_state_mask) == dda::contact_stick)
       sets.join(contacts.key[c].a, contacts.key[c].b);

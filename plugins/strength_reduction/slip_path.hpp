@@ -1,6 +1,7 @@
 // The released part of a block system: blocks not connected to the fixed
-// blocks through joints that stick. A group of free blocks held only by
-// open or slipping joints has a through-going slip path around it.
+// blocks through joints that stick (the blocks of a clump count as connected).
+// A group of free blocks held only by open or slipping joints has a
+// through-going slip path around it.
 #pragma once
 
 #include <cstdint>
@@ -16,6 +17,8 @@ struct Release {
   double mass_fraction = 0.0;         // of the free blocks' mass
 };
 
-Release released_blocks(const BlockSet& blocks, const dda::ContactSet& contacts);
+// rigid_body[i]: the block that leads block i's rigid body (DdaStage::rigid_body).
+Release released_blocks(const BlockSet& blocks, const dda::ContactSet& contacts,
+                        const std::vector<std::uint32_t>& rigid_body);
 
 }  // namespace talus::strength_reduction

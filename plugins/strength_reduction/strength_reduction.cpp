@@ -106,6 +106,10 @@ ParamSet StrengthReduction::describe() {
   p.real("damping").greater_than(0.0).less_than(1.0).default_value(0.8)
       .doc("local non-viscous damping coefficient alpha (3DEC): each force and torque component is reduced by "
            "alpha |F| against the block's velocity");
+  p.boolean("mass_scaling").default_value(true)
+      .doc("give each free block the inertia that brings its stable frequency down to the slowest block's "
+           "(3DEC's density scaling for statics): equilibria are unchanged, small blocks no longer set the step, "
+           "and many-block slopes relax in far fewer steps; gravity keeps the true mass");
   p.integer("window").min(10).default_value(500)
       .doc("steps between displacement checks; a displacement that grows three windows running without "
            "slowing down fails the trial");
@@ -195,6 +199,7 @@ void StrengthReduction::setup(World& world) {
     }
     runout_template_ = h.read_file("runout_scene", read_runout_template);
   }
+  dda_->set_mass_scaling(params_.boolean("mass_scaling"));
   dda_->setup(world);
   dda_->set_local_damping(damping_);
   check_start(world);
@@ -329,7 +334,7 @@ TrialResult StrengthReduction::relax(World& world, double factor) {
     r.slip += s == dda::contact_slip;
     r.bonded += (c.state[k] & dda::contact_bonded) != 0;
   }
-  const Release release = released_blocks(b, c);
+  const Release release = released_blocks(b, c, dda_->rigid_body());
   r.released_blocks = release.blocks.size();
   r.released_mass = release.mass_fraction;
   r.slip_path = !release.blocks.empty();
@@ -367,7 +372,7 @@ void StrengthReduction::advance(World& world, double /*dt*/) {
   if (!search_.searching()) return;
   restore_loaded_state(world);
   TrialResult r = relax(world, search_.next());
-  (r.failed() ? failed_ : stable_) = capture(r, dda_->contacts(), b, loaded_position_);
+  (r.failed() ? failed_ : stable_) = capture(r, dda_->contacts(), b, loaded_position_, dda_->rigid_body());
   search_.record(r.failed());
   log_.push_back(std::move(r));
 }

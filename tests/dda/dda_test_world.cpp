@@ -22,6 +22,7 @@ ParamSet block_body_params() {
   p.boolean("fixed").default_value(false).doc("never moves");
   p.vector("velocity").unit("m/s").default_value(std::vector<double>{0.0, 0.0, 0.0}).doc("initial velocity");
   p.vector("angular_velocity").unit("rad/s").default_value(std::vector<double>{0.0, 0.0, 0.0}).doc("initial angular velocity");
+  p.string("clump").optional().doc("blocks with the same clump name move as one rigid body");
   PrescribedMotion::declare(p);
   return p;
 }

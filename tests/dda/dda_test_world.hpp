@@ -13,7 +13,7 @@
 
 namespace talus::dda::test {
 
-// The parameters of a block body (name, kind, density, shape, fixed,
+// The parameters of a block body (name, kind, density, shape, fixed, clump,
 // velocity, angular_velocity, motion), as the scene declares them.
 ParamSet block_body_params();
 

@@ -108,6 +108,16 @@ TEST(BadScenes, SmoothingLengthBeyondAKernelTable) {
   expect_refused(refuse("bad_h", s), "/bodies/0/dp", "more than can be counted");
 }
 
+TEST(BadScenes, AClumpWithAFixedBlockOrOnAFluidNamesTheJsonPointer) {
+  json s = shipped("planar_slide");
+  s["bodies"][0]["clump"] = "slope";
+  s["bodies"][1]["clump"] = "slope";
+  expect_refused(refuse("clump_fixed", s), "/bodies/0/clump", "block 'base' is fixed; a clump is a free body");
+  json f = shipped("hydrostatic_2d");
+  f["bodies"][0]["clump"] = "water";
+  expect_refused(refuse("clump_fluid", f), "/bodies/0/clump", "does not apply to a fluid body");
+}
+
 TEST(BadScenes, UnknownOutputField) {
   json s = shipped("hydrostatic_2d");
   s["outputs"][1]["fields"] = {"velocity", "vorticity"};  // after the probes, which used to open their CSV first

@@ -1,8 +1,9 @@
 // Strength reduction on the seed's planar slide through `talus run`: the safety
 // factor against the closed form for three slab thicknesses, cohesion only,
 // friction only and a softer joint (gate 1 %, the issue's); the per-trial
-// table; the same factor for the slope turned and moved far away; and a
-// restart that continues the search exactly.
+// table; the same factor for the slope turned and moved far away, and for
+// the slab cut in clumped pieces on bases cut apart; and a restart that
+// continues the search exactly.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -107,6 +108,39 @@ TEST(PlanarSlide, TheFactorDoesNotDependOnWhereTheSlopeLiesOrWhichWayItFaces) {
     std::printf("%s: F_s = %.4f (original %.4f)\n", f.name, r.safety_factor, original.safety_factor);
     EXPECT_NEAR(r.safety_factor, original.safety_factor, 0.5 * 0.005 + 1e-9) << f.name;
     EXPECT_NEAR(r.safety_factor / closed_form({}), 1.0, 0.01) << f.name;
+  }
+}
+
+TEST(PlanarSlide, ASlabCutInClumpedPiecesHasTheFactorOfTheWholeSlab) {
+  // The slab cut across the slope into pieces of one clump, each on its own
+  // base, the bases 2 cm apart (so no piece touches another's base): the
+  // joint area and the load are the whole slab's, and so is F_s.
+  const nlohmann::json whole = planar_slide({});
+  for (int pieces : {2, 3}) {
+    nlohmann::json s = whole;
+    s["bodies"] = nlohmann::json::array();
+    const double width = 4.0 / pieces, gap = 0.01;
+    for (int k = 0; k < pieces; ++k) {
+      nlohmann::json base = whole["bodies"][0], slab = whole["bodies"][1];
+      const double y0 = k * width, y1 = (k + 1) * width;
+      for (auto& v : base["shape"]["polyhedron"]["vertices"])
+        v[1] = v[1].get<double>() < 2.0 ? (k == 0 ? -1.0 : y0 + gap) : (k == pieces - 1 ? 5.0 : y1 - gap);
+      for (auto& v : slab["shape"]["polyhedron"]["vertices"]) v[1] = v[1].get<double>() < 2.0 ? y0 : y1;
+      base["name"] = "base_" + std::to_string(k);
+      slab["name"] = "slab_" + std::to_string(k);
+      slab["clump"] = "slab";
+      s["bodies"].insert(s["bodies"].begin() + k, base);
+      s["bodies"].push_back(slab);
+    }
+    const FactorRun r = run_scene(s, "clumped_" + std::to_string(pieces));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const double exact = closed_form({});
+    std::printf("%d clumped pieces: F_s = %.4f, closed form %.4f (%+.3f %%)\n", pieces, r.safety_factor, exact,
+                100.0 * (r.safety_factor / exact - 1.0));
+    EXPECT_NEAR(r.safety_factor / exact, 1.0, 0.01);
+    const std::string summary = read_file(r.directory + ".summary.json");
+    EXPECT_NE(summary.find(std::to_string(pieces) + " block(s) released (100 % of the free mass)"), std::string::npos)
+        << summary;
   }
 }
 

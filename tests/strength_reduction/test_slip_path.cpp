@@ -23,6 +23,13 @@ BlockSet stack(int free_blocks) {
   return b;
 }
 
+// Every block its own rigid body.
+std::vector<std::uint32_t> singles(const BlockSet& b) {
+  std::vector<std::uint32_t> r(b.size());
+  for (std::uint32_t i = 0; i < r.size(); ++i) r[i] = i;
+  return r;
+}
+
 void add(ContactSet& c, std::uint32_t a, std::uint32_t b, std::uint8_t state) {
   c.resize(c.size() + 1);
   c.key.back() = {0, a, b, 0};
@@ -37,15 +44,15 @@ TEST(SlipPath, StickingJointsHoldAndSlippingOnesRelease) {
   add(c, 0, 1, contact_stick | contact_bonded);
   add(c, 1, 2, contact_slip);
   add(c, 2, 3, contact_stick);
-  auto r = released_blocks(b, c);
+  auto r = released_blocks(b, c, singles(b));
   EXPECT_EQ(r.blocks, (std::vector<std::uint32_t>{2, 3}));  // 2 and 3 ride on a slipping joint together
   EXPECT_DOUBLE_EQ(r.mass_fraction, 6.0 / 7.0);
 
   c.state[1] = contact_stick;  // everything sticks: nothing released
-  EXPECT_TRUE(released_blocks(b, c).blocks.empty());
+  EXPECT_TRUE(released_blocks(b, c, singles(b)).blocks.empty());
 
   c.state[0] = contact_open;  // the whole column lifted off the base
-  r = released_blocks(b, c);
+  r = released_blocks(b, c, singles(b));
   EXPECT_EQ(r.blocks.size(), 3u);
   EXPECT_DOUBLE_EQ(r.mass_fraction, 1.0);
 }
@@ -54,6 +61,19 @@ TEST(SlipPath, ABlockTouchingNothingIsReleased) {
   const BlockSet b = stack(2);
   ContactSet c;
   add(c, 0, 1, contact_stick);
-  const auto r = released_blocks(b, c);
+  const auto r = released_blocks(b, c, singles(b));
   EXPECT_EQ(r.blocks, (std::vector<std::uint32_t>{2}));
+}
+
+TEST(SlipPath, TheBlocksOfAClumpAreHeldTogether) {
+  const BlockSet b = stack(3);
+  ContactSet c;
+  add(c, 0, 1, contact_stick);
+  add(c, 1, 2, contact_slip);
+  add(c, 0, 3, contact_slip);
+  EXPECT_EQ(released_blocks(b, c, singles(b)).blocks, (std::vector<std::uint32_t>{2, 3}));
+  // Blocks 2 and 3 one clump led by 2, block 1 its own: the clump has no sticking joint.
+  EXPECT_EQ(released_blocks(b, c, {0, 1, 2, 2}).blocks, (std::vector<std::uint32_t>{2, 3}));
+  // Blocks 1 and 3 one clump: block 1 sticks to the base, so the clump holds; 2 slides off it.
+  EXPECT_EQ(released_blocks(b, c, {0, 1, 2, 1}).blocks, (std::vector<std::uint32_t>{2}));
 }
