@@ -11,6 +11,8 @@ import sys
 
 import numpy as np
 
+from esri_grid import read_asc
+
 import matplotlib
 
 matplotlib.use("Agg")
@@ -22,32 +24,6 @@ LABELS = {
     "peak_velocity": ("peak velocity", "m/s"),
     "arrival_time": ("arrival time", "s"),
 }
-
-
-def read_asc(path):
-    """Returns (values with north row first, extent [x0, x1, y0, y1], nodata)."""
-    header = {}
-    try:
-        with open(path) as f:
-            for _ in range(6):
-                pos = f.tell()
-                line = f.readline().split()
-                if len(line) != 2 or not line[0][0].isalpha():
-                    f.seek(pos)
-                    break
-                header[line[0].lower()] = float(line[1])
-            data = np.loadtxt(f, ndmin=2)
-    except OSError as e:
-        sys.exit(f"error: {path}: {e.strerror}")
-    for key in ("ncols", "nrows", "cellsize"):
-        if key not in header:
-            sys.exit(f"error: {path}: header has no '{key}'")
-    nc, nr, cell = int(header["ncols"]), int(header["nrows"]), header["cellsize"]
-    if data.shape != (nr, nc):
-        sys.exit(f"error: {path}: {data.shape[0]} x {data.shape[1]} values, header says {nr} x {nc}")
-    x0 = header.get("xllcorner", header.get("xllcenter", 0.0) - cell / 2)
-    y0 = header.get("yllcorner", header.get("yllcenter", 0.0) - cell / 2)
-    return data, [x0, x0 + nc * cell, y0, y0 + nr * cell], header.get("nodata_value", -9999.0)
 
 
 def hillshade(z, cell, azimuth=315.0, altitude=45.0):

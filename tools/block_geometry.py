@@ -1,0 +1,56 @@
+"""Small geometry helpers for the tools that write block scenes (convex polyhedra as JSON)."""
+import math
+
+
+def add(a, b, s=1.0):
+    return tuple(a[i] + s * b[i] for i in range(3))
+
+
+def sub(a, b):
+    return tuple(a[i] - b[i] for i in range(3))
+
+
+def cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def dot(a, b):
+    return sum(a[i] * b[i] for i in range(3))
+
+
+def unit(a):
+    n = math.sqrt(dot(a, a))
+    return tuple(x / n for x in a)
+
+
+def oriented(vertices, faces):
+    """Faces turned counter-clockwise seen from outside (the polyhedron is convex: outside is away from its centroid)."""
+    centroid = tuple(sum(v[i] for v in vertices) / len(vertices) for i in range(3))
+    out = []
+    for f in faces:
+        p = [vertices[i] for i in f]
+        normal = (0.0, 0.0, 0.0)
+        for a in range(len(p)):
+            normal = add(normal, cross(p[a], p[(a + 1) % len(p)]))
+        middle = tuple(sum(q[i] for q in p) / len(p) for i in range(3))
+        out.append(list(f) if dot(normal, sub(middle, centroid)) > 0 else list(reversed(f)))
+    return out
+
+
+def rounded(points):
+    return [[round(x, 9) for x in p] for p in points]
+
+
+def polyhedron(vertices, faces):
+    """The scene's `polyhedron` shape of a convex solid."""
+    return {"polyhedron": {"vertices": rounded(vertices), "faces": oriented(vertices, faces)}}
+
+
+def volume(vertices, faces):
+    """Volume of a closed polyhedron whose faces are oriented outwards (divergence theorem over fanned faces)."""
+    total = 0.0
+    for f in faces:
+        a = vertices[f[0]]
+        for k in range(1, len(f) - 1):
+            total += dot(a, cross(vertices[f[k]], vertices[f[k + 1]]))
+    return total / 6.0

@@ -1,0 +1,68 @@
+"""ESRI ASCII grids (.asc): the raster format of Talus' DEMs and run-out rasters.
+
+read_asc(path) returns (values with the north row first, extent [x0, x1, y0, y1], nodata); a bad file ends the
+program with a message naming it. Values belong to cell centres: column c, row r (from the north) sits at
+x0 + (c + 0.5) cell, y1 - (r + 0.5) cell."""
+import sys
+
+import numpy as np
+
+
+def read_asc(path):
+    header = {}
+    try:
+        with open(path) as f:
+            for _ in range(6):
+                pos = f.tell()
+                line = f.readline().split()
+                if len(line) != 2 or not line[0][0].isalpha():
+                    f.seek(pos)
+                    break
+                header[line[0].lower()] = float(line[1])
+            data = np.loadtxt(f, ndmin=2)
+    except OSError as e:
+        sys.exit(f"error: {path}: {e.strerror}")
+    except ValueError as e:
+        sys.exit(f"error: {path}: {e}")
+    for key in ("ncols", "nrows", "cellsize"):
+        if key not in header:
+            sys.exit(f"error: {path}: header has no '{key}'")
+    nc, nr, cell = int(header["ncols"]), int(header["nrows"]), header["cellsize"]
+    if not cell > 0:
+        sys.exit(f"error: {path}: cellsize must be > 0, got {cell}")
+    if data.shape != (nr, nc):
+        sys.exit(f"error: {path}: {data.shape[0]} x {data.shape[1]} values, header says {nr} x {nc}")
+    x0 = header.get("xllcorner", header.get("xllcenter", 0.0) - cell / 2)
+    y0 = header.get("yllcorner", header.get("yllcenter", 0.0) - cell / 2)
+    return data, [x0, x0 + nc * cell, y0, y0 + nr * cell], header.get("nodata_value", -9999.0)
+
+
+def write_asc(path, values, x0, y0, cell, nodata=-9999.0):
+    """Writes values (north row first) with its lower-left corner at (x0, y0)."""
+    nr, nc = values.shape
+    with open(path, "w") as f:
+        f.write(f"ncols {nc}\nnrows {nr}\nxllcorner {x0!r}\nyllcorner {y0!r}\ncellsize {cell!r}\n"
+                f"NODATA_value {nodata!r}\n")
+        for row in values:
+            f.write(" ".join(f"{v:.6f}" for v in row) + "\n")
+
+
+def bilinear(values, extent, nodata, x, y):
+    """Bilinear interpolation between cell centres at the points (x, y) (arrays); NaN outside the centres' hull
+    or next to a nodata cell."""
+    nr, nc = values.shape
+    cell = (extent[1] - extent[0]) / nc
+    fx = (np.asarray(x, dtype=float) - extent[0]) / cell - 0.5
+    fy = (extent[3] - np.asarray(y, dtype=float)) / cell - 0.5
+    inside = (fx >= 0) & (fx <= nc - 1) & (fy >= 0) & (fy <= nr - 1)
+    c0 = np.clip(np.floor(fx), 0, max(nc - 2, 0)).astype(int)
+    r0 = np.clip(np.floor(fy), 0, max(nr - 2, 0)).astype(int)
+    c1, r1 = np.minimum(c0 + 1, nc - 1), np.minimum(r0 + 1, nr - 1)
+    tx, ty = np.clip(fx - c0, 0, 1), np.clip(fy - r0, 0, 1)
+    corners = [values[r0, c0], values[r0, c1], values[r1, c0], values[r1, c1]]
+    z = ((1 - tx) * (1 - ty) * corners[0] + tx * (1 - ty) * corners[1] + (1 - tx) * ty * corners[2]
+         + tx * ty * corners[3])
+    bad = ~inside
+    for corner in corners:
+        bad |= corner == nodata
+    return np.where(bad, np.nan, z)
