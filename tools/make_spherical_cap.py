@@ -19,101 +19,20 @@ import json
 import math
 import os
 
+from make_ellipsoid_slide import Ellipsoid, slide_bodies
+
 R = 40.0
 CENTRE = (0.0, 0.0, 40.0)
-# Unit normal of the face plane z = x pointing out of the slope (towards C); the cap lies against it.
-UP = (-1.0 / math.sqrt(2.0), 0.0, 1.0 / math.sqrt(2.0))
+# A point of the face plane z = x and its unit normal pointing out of the slope (towards C).
+TOE, UP = (0.0, 0.0, 0.0), (-1.0 / math.sqrt(2.0), 0.0, 1.0 / math.sqrt(2.0))
 CAP_DENSITY, BASE_DENSITY = 2000.0, 2300.0
 COHESION, FRICTION = 30e3, 30.0
 
 
-def add(a, b, s=1.0):
-    return tuple(a[i] + s * b[i] for i in range(3))
-
-
-def sub(a, b):
-    return tuple(a[i] - b[i] for i in range(3))
-
-
-def cross(a, b):
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-def dot(a, b):
-    return sum(a[i] * b[i] for i in range(3))
-
-
-def unit(a):
-    n = math.sqrt(dot(a, a))
-    return tuple(x / n for x in a)
-
-
-def cap_vertices(rings, segments):
-    """Apex first, then ring k = 1..rings of `segments` points; the last ring is the rim on the face plane."""
-    axis = tuple(-x for x in UP)  # from C towards the apex
-    e1 = unit(cross(axis, (0.0, 1.0, 0.0)))
-    e2 = cross(axis, e1)
-    theta_max = math.acos(math.sqrt(0.5))  # the rim: distance R cos(theta) = R / sqrt(2) from C to the plane
-    points = [add(CENTRE, axis, R)]
-    for k in range(1, rings + 1):
-        theta = theta_max * k / rings
-        for j in range(segments):
-            phi = 2.0 * math.pi * j / segments
-            d = add(add(tuple(math.cos(theta) * x for x in axis), e1, math.sin(theta) * math.cos(phi)),
-                    e2, math.sin(theta) * math.sin(phi))
-            points.append(add(CENTRE, d, R))
-    return points
-
-
-def curved_facets(rings, segments):
-    """Vertex indices of the curved facets: triangles round the apex, then quads between rings."""
-    ring = lambda k, j: 1 + (k - 1) * segments + j % segments
-    facets = [[0, ring(1, j), ring(1, j + 1)] for j in range(segments)]
-    for k in range(1, rings):
-        facets += [[ring(k, j), ring(k + 1, j), ring(k + 1, j + 1), ring(k, j + 1)] for j in range(segments)]
-    return facets
-
-
-def oriented(vertices, faces):
-    """Faces turned counter-clockwise seen from outside (the polyhedron is convex: outside is away from its centroid)."""
-    centroid = tuple(sum(v[i] for v in vertices) / len(vertices) for i in range(3))
-    out = []
-    for f in faces:
-        p = [vertices[i] for i in f]
-        normal = (0.0, 0.0, 0.0)
-        for a in range(len(p)):
-            normal = add(normal, cross(p[a], p[(a + 1) % len(p)]))
-        middle = tuple(sum(q[i] for q in p) / len(p) for i in range(3))
-        out.append(list(f) if dot(normal, sub(middle, centroid)) > 0 else list(reversed(f)))
-    return out
-
-
-def rounded(points):
-    return [[round(x, 9) for x in p] for p in points]
-
-
-def contact():
-    return {"type": "mohr_coulomb", "normal_stiffness": 1e10, "friction_angle": FRICTION, "cohesion": COHESION,
-            "damping_ratio": 0.0, "shear_softening": "none"}
-
-
 def scene(rings, segments, base_depth):
-    vertices = cap_vertices(rings, segments)
-    facets = curved_facets(rings, segments)
-    rim = [1 + (rings - 1) * segments + j for j in range(segments)]
-    bodies = []
-    for n, f in enumerate(facets):
-        inner = [vertices[i] for i in f]
-        outer = [add(CENTRE, sub(v, CENTRE), 1.0 + base_depth / R) for v in inner]
-        m = len(f)
-        faces = [list(range(m)), list(range(m, 2 * m))] + [[a, (a + 1) % m, m + (a + 1) % m, m + a] for a in range(m)]
-        points = inner + outer
-        bodies.append({"name": "base_%d" % n, "kind": "block", "density": BASE_DENSITY, "fixed": True,
-                       "shape": {"polyhedron": {"vertices": rounded(points), "faces": oriented(points, faces)}},
-                       "contact": contact()})
-    cap_faces = oriented(vertices, facets + [rim])
-    bodies.append({"name": "cap", "kind": "block", "density": CAP_DENSITY,
-                   "shape": {"polyhedron": {"vertices": rounded(vertices), "faces": cap_faces}}, "contact": contact()})
+    bodies, _ = slide_bodies(Ellipsoid(CENTRE, (R, R, R), 0.0), TOE, UP, rings, segments, base_depth / R,
+                             CAP_DENSITY, BASE_DENSITY, COHESION, FRICTION)
+    bodies[-1]["name"] = "cap"
     height = R * (1.0 - math.sqrt(0.5))
     volume = math.pi * height * height * (3.0 * R - height) / 3.0
     description = (
@@ -124,7 +43,7 @@ def scene(rings, segments, base_depth):
         "(%d rings x %d segments), each on a fixed base block %.0f m deep. Joints c = 30 kPa, phi = 30 deg, perfectly "
         "plastic (the seed's Table 1). The seed reports F_s = 1.45 (deformable blocks); limit equilibrium: simplified "
         "Bishop 1.30, 3D Spencer 1.34, simplified Janbu 1.25, 3D Sarma 1.48. Written by tools/make_spherical_cap.py."
-        % (height, volume, len(facets), rings, segments, base_depth))
+        % (height, volume, rings * segments, rings, segments, base_depth))
     return {
         "talus": 1,
         "description": description,

@@ -1,11 +1,14 @@
-// The landslide chain on the planar slide through `talus run`: strength
-// reduction hands the failed slab to run-out (rasters and a scene), the
-// hand-off keeps the slab's volume within 1 %, and the generated run-out
-// scene runs and keeps that volume exactly.
+// The landslide chain through `talus run`, on the planar slide and on the
+// hillside DEM's ellipsoidal slide: strength reduction hands the failed mass
+// to run-out (rasters and a scene), the hand-off keeps its volume within 1 %,
+// the terrain is the DEM with the slip surface let into it, and the generated
+// run-out scene runs and keeps the volume exactly.
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <filesystem>
+#include <sstream>
+#include <vector>
 
 #include "planar_slide_scene.hpp"
 #include "process.hpp"
@@ -20,6 +23,16 @@ nlohmann::json chain_scene() {
   s["pipeline"][0]["handoff"] = {{"runout_scene", TALUS_SHARE_DIR "/scenes/planar_slide_runout.json"},
                                  {"dem", TALUS_SHARE_DIR "/dem/planar_slide_valley.asc"}};
   return s;
+}
+
+// Values of an ESRI ASCII grid (six header lines), row by row.
+std::vector<double> raster(const std::string& path) {
+  std::istringstream in(read_file(path));
+  std::string line;
+  for (int k = 0; k < 6; ++k) std::getline(in, line);
+  std::vector<double> v;
+  for (double x; in >> x;) v.push_back(x);
+  return v;
 }
 
 double number_after(const std::string& text, const std::string& key) {
@@ -72,4 +85,49 @@ TEST(LandslideChain, ABadHandoffIsRefusedBeforeAnythingIsWritten) {
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("/materials/debris/rheology"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(r.directory));
+}
+
+TEST(LandslideChain, TheHillsideSlideRunsOutOverItsDem) {
+  nlohmann::json s = nlohmann::json::parse(read_file(TALUS_SHARE_DIR "/scenes/hillside_chain.json"));
+  s["pipeline"][0]["handoff"] = {{"runout_scene", TALUS_SHARE_DIR "/scenes/hillside_runout.json"},
+                                 {"dem", TALUS_SHARE_DIR "/dem/hillside_valley.asc"}};
+  const FactorRun sr = run_scene(s, "hillside_chain", "");
+  ASSERT_EQ(sr.exit_code, 0) << sr.output;
+  std::printf("hillside: F_s = %.4f in [%.4f, %.4f]\n", sr.safety_factor, sr.holds, sr.fails);
+  const std::string summary = read_file(sr.directory + ".summary.json");
+  const std::string description = s["description"];
+  const double block = number_after(description, "the ellipsoidal cap ");
+  const double released = number_after(summary, "released volume ");
+  const double in_raster = number_after(summary, "in the thickness raster ");
+  std::printf("hillside hand-off: block %.1f m^3, released %.1f m^3, raster %.1f m^3\n", block, released, in_raster);
+  EXPECT_NEAR(released / block, 1.0, 1e-5);
+  EXPECT_NEAR(in_raster / block, 1.0, 0.01);
+
+  // The terrain: the DEM where nothing failed, the slip surface under the failed mass, never above the DEM.
+  const auto dem = raster(TALUS_SHARE_DIR "/dem/hillside_valley.asc");
+  const auto terrain = raster(sr.directory + "/strength_reduction_terrain.asc");
+  const auto thickness = raster(sr.directory + "/strength_reduction_thickness.asc");
+  ASSERT_EQ(terrain.size(), dem.size());
+  ASSERT_EQ(thickness.size(), dem.size());
+  std::size_t failed = 0;
+  double deepest = 0.0;
+  for (std::size_t k = 0; k < dem.size(); ++k) {
+    EXPECT_LE(terrain[k], dem[k] + 1e-6) << "cell " << k;
+    if (thickness[k] > 0.0) {
+      ++failed;
+      deepest = std::max(deepest, dem[k] - terrain[k]);
+    }
+  }
+  std::printf("hillside: %zu failed cells, slip surface up to %.2f m under the DEM\n", failed, deepest);
+  EXPECT_GT(failed, 100u);
+  EXPECT_GT(deepest, 5.0);
+
+  const std::string runout = sr.directory + "/strength_reduction_runout.json";
+  const std::string out = sr.directory + "_runout";
+  fs::remove_all(out);
+  const auto ro = run_command(std::string(TALUS_EXE) + " run " + runout + " --quiet --out " + out + " --summary " +
+                              out + ".summary.json");
+  ASSERT_EQ(ro.exit_code, 0) << ro.output;
+  const double deposit = number_after(read_file(out + ".summary.json"), "deposit volume ");
+  EXPECT_NEAR(deposit / in_raster, 1.0, 1e-5);
 }
