@@ -80,6 +80,23 @@ void BlockScene::run_until(double t_end) {
   }
 }
 
+std::string contact(double phi_deg, double damping, const char* type,
+                    const std::string& extra) {
+  return std::string("{\"type\": \"") + type + "\", \"normal_stiffness\": 1e8, \"friction_angle\": " +
+         std::to_string(phi_deg) + ", \"damping_ratio\": " + std::to_string(damping) + extra + "}";
+}
+
+std::string block(const std::string& name, const std::string& shape, const std::string& extra) {
+  return "{\"name\": \"" + name + "\", \"kind\": \"block\", \"density\": 2500, \"shape\": " + shape + extra + "}";
+}
+
+std::string box(Vec3 lo, Vec3 hi) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "{\"box\": {\"min\": [%.17g, %.17g, %.17g], \"max\": [%.17g, %.17g, %.17g]}}", lo.x,
+                lo.y, lo.z, hi.x, hi.y, hi.z);
+  return buf;
+}
+
 std::string rotated_box_json(Vec3 lo, Vec3 hi, double angle_deg, Vec3 pivot) {
   const double a = angle_deg * std::numbers::pi / 180.0, c = std::cos(a), s = std::sin(a);
   std::string v = "[";

@@ -36,6 +36,14 @@ class BlockScene {
   BlockSet& blocks() { return *world.blocks; }
 };
 
+// JSON snippets: a contact model (penalty springs of 1e8 N/m with friction
+// angle phi; `extra` appends keys), a 2500 kg/m^3 block body with a shape,
+// and an axis-aligned box shape.
+std::string contact(double phi_deg, double damping = 0.2, const char* type = "penalty_coulomb",
+                    const std::string& extra = "");
+std::string block(const std::string& name, const std::string& shape, const std::string& extra = "");
+std::string box(Vec3 lo, Vec3 hi);
+
 // A box polyhedron JSON rotated by `angle_deg` about the y axis around `pivot`
 // (for inclines and tilted blocks).
 std::string rotated_box_json(Vec3 lo, Vec3 hi, double angle_deg, Vec3 pivot);

@@ -16,29 +16,15 @@
 using namespace talus;
 using namespace talus::dda;
 using talus::dda::test::BlockScene;
+using talus::dda::test::block;
+using talus::dda::test::box;
+using talus::dda::test::contact;
 using talus::dda::test::rotated_box_json;
 
 namespace {
 
 constexpr double g = 9.81;
 constexpr double deg = std::numbers::pi / 180.0;
-
-std::string contact(double phi_deg, double damping = 0.2, const char* type = "penalty_coulomb",
-                    const std::string& extra = "") {
-  return std::string("{\"type\": \"") + type + "\", \"normal_stiffness\": 1e8, \"friction_angle\": " +
-         std::to_string(phi_deg) + ", \"damping_ratio\": " + std::to_string(damping) + extra + "}";
-}
-
-std::string block(const std::string& name, const std::string& shape, const std::string& extra = "") {
-  return "{\"name\": \"" + name + "\", \"kind\": \"block\", \"density\": 2500, \"shape\": " + shape + extra + "}";
-}
-
-std::string box(Vec3 lo, Vec3 hi) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "{\"box\": {\"min\": [%.17g, %.17g, %.17g], \"max\": [%.17g, %.17g, %.17g]}}", lo.x,
-                lo.y, lo.z, hi.x, hi.y, hi.z);
-  return buf;
-}
 
 // Distance travelled down a 30-degree incline (joint friction 20 degrees) in
 // 1 s by a 0.2 m cube, whole or cut in `pieces` slices across the slope
