@@ -13,7 +13,10 @@ cap is a spherical cap; its curved side is faceted on a latitude-longitude grid 
 --segments; every quad's corners lie on the sphere and in one plane, and the affine map back keeps faces planar and
 the solid convex). Under each facet a fixed base block: the facet and its copy pushed away from the centre by the
 fraction --base-depth of the way to the surface, a convex frustum. The joints are the facets: c, phi, perfectly
-plastic.
+plastic, with a stiffness per unit area (--joint-stiffness, Pa/m): the contact model of each base gives its facet's
+contact points (one per corner) the stiffness times their share of the facet's area. Springs of equal stiffness at
+points of unequal area would load the small facets (round the apex) as hard as the large ones, so their cohesion
+would give way first.
 
     /usr/bin/python3 tools/make_ellipsoid_slide.py --ellipsoid 0 0 40 40 40 40 --plane 0 0 0 -1 0 1 --out cap.json
     /usr/bin/python3 tools/make_ellipsoid_slide.py --dem share/dem/hillside_valley.asc \\
@@ -28,7 +31,6 @@ import sys
 
 from block_geometry import add, cross, dot, oriented, rounded, sub, unit, volume
 
-NORMAL_STIFFNESS = 1e10  # N/m per contact point, as the other block scenes
 
 
 def mat_vec(m, v):
@@ -91,13 +93,20 @@ def curved_facets(rings, segments):
     return facets
 
 
-def joint(cohesion, friction):
-    return {"type": "mohr_coulomb", "normal_stiffness": NORMAL_STIFFNESS, "friction_angle": friction,
+def joint(cohesion, friction, point_stiffness):
+    return {"type": "mohr_coulomb", "normal_stiffness": point_stiffness, "friction_angle": friction,
             "cohesion": cohesion, "damping_ratio": 0.0, "shear_softening": "none"}
 
 
+def polygon_area(points):
+    total = (0.0, 0.0, 0.0)
+    for k in range(1, len(points) - 1):
+        total = add(total, cross(sub(points[k], points[0]), sub(points[k + 1], points[0])))
+    return 0.5 * math.sqrt(dot(total, total))
+
+
 def slide_bodies(ellipsoid, face_point, face_normal, rings, segments, base_depth, density, base_density, cohesion,
-                 friction):
+                 friction, joint_stiffness):
     """The base blocks (fixed, listed first: a contact uses the model of the block listed first) and the sliding
     block, and the sliding block's volume."""
     n, d = ellipsoid.plane_to_sphere(face_point, face_normal)
@@ -107,20 +116,22 @@ def slide_bodies(ellipsoid, face_point, face_normal, rings, segments, base_depth
     vertices = [ellipsoid.to_world(u) for u in sphere]
     facets = curved_facets(rings, segments)
     rim = [1 + (rings - 1) * segments + j for j in range(segments)]
-    joints = joint(cohesion, friction)
-    bodies = []
+    bodies, point_stiffness = [], []
     for k, f in enumerate(facets):
         inner = [sphere[i] for i in f]
         outer = [tuple((1.0 + base_depth) * x for x in u) for u in inner]
         m = len(f)
         faces = [list(range(m)), list(range(m, 2 * m))] + [[a, (a + 1) % m, m + (a + 1) % m, m + a] for a in range(m)]
         points = [ellipsoid.to_world(u) for u in inner + outer]
+        point_stiffness.append(joint_stiffness * polygon_area(points[:m]) / m)
         bodies.append({"name": "base_%d" % k, "kind": "block", "density": base_density, "fixed": True,
                        "shape": {"polyhedron": {"vertices": rounded(points), "faces": oriented(points, faces)}},
-                       "contact": joints})
+                       "contact": joint(cohesion, friction, float("%.6g" % point_stiffness[-1]))})
     faces = oriented(vertices, facets + [rim])
+    # The slide's own model meets no other block (its contacts take the bases' models); the stiffest facet's.
     bodies.append({"name": "slide", "kind": "block", "density": density,
-                   "shape": {"polyhedron": {"vertices": rounded(vertices), "faces": faces}}, "contact": joints})
+                   "shape": {"polyhedron": {"vertices": rounded(vertices), "faces": faces}},
+                   "contact": joint(cohesion, friction, float("%.6g" % max(point_stiffness)))})
     return bodies, volume(vertices, faces)
 
 
@@ -176,7 +187,8 @@ def scene(args):
         point, normal = tuple(args.plane[:3]), unit(tuple(args.plane[3:]))
         fit = ""
     bodies, block_volume = slide_bodies(ellipsoid, point, normal, args.rings, args.segments, args.base_depth,
-                                        args.density, args.base_density, args.cohesion, args.friction)
+                                        args.density, args.base_density, args.cohesion, args.friction,
+                                        args.joint_stiffness)
     exact = exact_cap_volume(ellipsoid, point, normal)
     slide = bodies[-1]["shape"]["polyhedron"]["vertices"]
     lo = [min(p[i] for b in bodies for p in b["shape"]["polyhedron"]["vertices"]) for i in range(3)]
@@ -197,9 +209,10 @@ def scene(args):
         "A slope face cut by the ellipsoidal slip surface centred at (%g, %g, %g) m with semi-axes %g, %g, %g m "
         "(turned %g deg): the sliding mass is the ellipsoidal cap %.1f m^3 (the smooth cap: %.1f m^3), one rigid "
         "block of %g kg/m^3, its curved side in %d facets (%d rings x %d segments), each on a fixed base block. "
-        "Joints c = %g Pa, phi = %g deg, perfectly plastic.%s%s Written by tools/make_ellipsoid_slide.py."
+        "Joints c = %g Pa, phi = %g deg, perfectly plastic, %g Pa/m normal stiffness per unit area.%s%s Written by "
+        "tools/make_ellipsoid_slide.py."
         % (*args.ellipsoid, args.azimuth, block_volume, exact, args.density, args.rings * args.segments, args.rings,
-           args.segments, args.cohesion, args.friction, fit, handoff))
+           args.segments, args.cohesion, args.friction, args.joint_stiffness, fit, handoff))
     return {
         "talus": 1,
         "description": description,
@@ -230,6 +243,8 @@ def parse(argv=None):
     ap.add_argument("--base-density", type=float, default=2300.0, help="base rock, kg/m^3 (default 2300)")
     ap.add_argument("--cohesion", type=float, default=30e3, help="joint cohesion, Pa (default 30e3)")
     ap.add_argument("--friction", type=float, default=30.0, help="joint friction angle, deg (default 30)")
+    ap.add_argument("--joint-stiffness", type=float, default=1e9,
+                    help="joint normal stiffness per unit area, Pa/m (default 1e9; shear 0.4 of it)")
     ap.add_argument("--runout-scene", help="run-out scene the strength reduction hands the failed mass to")
     ap.add_argument("--out", required=True, help="scene file to write")
     args = ap.parse_args(argv)
@@ -237,7 +252,7 @@ def parse(argv=None):
         ap.error("need at least 1 ring and 3 segments")
     if min(args.ellipsoid[3:]) <= 0:
         ap.error("--ellipsoid: the semi-axes must be > 0")
-    for name in ("base_depth", "density", "base_density"):
+    for name in ("base_depth", "density", "base_density", "joint_stiffness"):
         if not getattr(args, name) > 0:
             ap.error("--%s must be > 0" % name.replace("_", "-"))
     if args.cohesion < 0 or not 0 <= args.friction < 90:

@@ -9,7 +9,8 @@ cap cut off by the face plane (height R - R/sqrt(2), rim radius R/sqrt(2)), conv
 Its curved side is faceted on a latitude-longitude grid about the cap's axis (rings x segments;
 each quad's four corners lie on the sphere and in one plane). Under each facet a fixed base block:
 the facet and its copy pushed out radially from C by `--base-depth`, a convex frustum. The joints
-are the facets: c = 30 kPa, phi = 30 deg (the seed's Table 1), perfectly plastic.
+are the facets: c = 30 kPa, phi = 30 deg (the seed's Table 1), perfectly plastic, with a normal
+stiffness of 1e9 Pa/m per unit area (tools/make_ellipsoid_slide.py builds it).
 
     /usr/bin/python3 tools/make_spherical_cap.py                      # share/scenes/spherical_cap.json
     /usr/bin/python3 tools/make_spherical_cap.py --rings 6 --segments 24 --out /tmp/cap.json
@@ -27,11 +28,12 @@ CENTRE = (0.0, 0.0, 40.0)
 TOE, UP = (0.0, 0.0, 0.0), (-1.0 / math.sqrt(2.0), 0.0, 1.0 / math.sqrt(2.0))
 CAP_DENSITY, BASE_DENSITY = 2000.0, 2300.0
 COHESION, FRICTION = 30e3, 30.0
+JOINT_STIFFNESS = 1e9  # Pa/m: normal stiffness per unit joint area
 
 
 def scene(rings, segments, base_depth):
     bodies, _ = slide_bodies(Ellipsoid(CENTRE, (R, R, R), 0.0), TOE, UP, rings, segments, base_depth / R,
-                             CAP_DENSITY, BASE_DENSITY, COHESION, FRICTION)
+                             CAP_DENSITY, BASE_DENSITY, COHESION, FRICTION, JOINT_STIFFNESS)
     bodies[-1]["name"] = "cap"
     height = R * (1.0 - math.sqrt(0.5))
     volume = math.pi * height * height * (3.0 * R - height) / 3.0
@@ -41,9 +43,10 @@ def scene(rings, segments, base_depth):
         "height (0, 0, 40), through the toe and the crest edge. The sliding mass, the slope inside the ball, is a "
         "spherical cap %.2f m high and %.0f m^3 (one rigid block, density 2000 kg/m^3), its curved side in %d facets "
         "(%d rings x %d segments), each on a fixed base block %.0f m deep. Joints c = 30 kPa, phi = 30 deg, perfectly "
-        "plastic (the seed's Table 1). The seed reports F_s = 1.45 (deformable blocks); limit equilibrium: simplified "
-        "Bishop 1.30, 3D Spencer 1.34, simplified Janbu 1.25, 3D Sarma 1.48. Written by tools/make_spherical_cap.py."
-        % (height, volume, rings * segments, rings, segments, base_depth))
+        "plastic (the seed's Table 1), normal stiffness %g Pa/m per unit area. The seed reports F_s = 1.45 (its "
+        "landslide rigid, 397 contact pairs); limit equilibrium: simplified Bishop 1.30, 3D Spencer 1.34, simplified "
+        "Janbu 1.25, 3D Sarma 1.48. Written by tools/make_spherical_cap.py."
+        % (height, volume, rings * segments, rings, segments, base_depth, JOINT_STIFFNESS))
     return {
         "talus": 1,
         "description": description,

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""tools/make_ellipsoid_slide.py: the shipped spherical cap and hillside scenes are what it writes; the faceted
-block's volume converges to the smooth ellipsoidal cap at second order, in any frame; a face fitted to a planar DEM
-is that plane; every block it writes passes `talus validate`; a face that misses the ellipsoid is refused.
+"""tools/make_ellipsoid_slide.py: the shipped spherical cap and hillside scenes are what it writes; the joints are
+equally stiff per unit area on every facet; the faceted block's volume converges to the smooth ellipsoidal cap at
+second order, in any frame; a face fitted to a planar DEM is that plane; every block it writes passes
+`talus validate`; a face that misses the ellipsoid is refused.
 
     test_ellipsoid_slide.py TALUS SOURCE_DIR WORK_DIR"""
 import json
@@ -52,14 +53,27 @@ shipped = load("hillside_chain.json")
 written["pipeline"][0]["handoff"] = shipped["pipeline"][0]["handoff"]  # relative to another folder
 check(r.returncode == 0 and written == shipped, "share/scenes/hillside_chain.json is what the tool writes")
 
-# 2. Volume against the smooth cap (abc pi h^2 (3 - h) / 3 on the unit ball): a turned, unequal ellipsoid cut by a
+# 2. Each facet's contact points (one per corner) share its area: stiffness x corners / area is the same everywhere.
+cap = load("spherical_cap.json")
+per_area, areas = [], []
+for body in cap["bodies"][:-1]:
+    vertices = body["shape"]["polyhedron"]["vertices"]
+    corners = len(vertices) // 2
+    areas.append(tool.polygon_area([tuple(v) for v in vertices[:corners]]))
+    per_area.append(body["contact"]["normal_stiffness"] * corners / areas[-1])
+spread = max(per_area) / min(per_area) - 1.0
+check(spread < 1e-5 and abs(per_area[0] / 1e9 - 1.0) < 1e-5 and max(areas) / min(areas) > 2.0,
+      "joint stiffness 1e9 Pa/m on every facet (spread %.2g) while facet areas differ %.1f-fold"
+      % (spread, max(areas) / min(areas)))
+
+# 3. Volume against the smooth cap (abc pi h^2 (3 - h) / 3 on the unit ball): a turned, unequal ellipsoid cut by a
 # tilted plane; errors fall four-fold per doubling of the facets.
 ellipsoid = tool.Ellipsoid((3.0, -2.0, 30.0), (36.0, 24.0, 30.0), 25.0)
 point, normal = (0.0, 0.0, 0.0), tool.unit((-0.8, 0.3, 1.0))
 exact = tool.exact_cap_volume(ellipsoid, point, normal)
 errors = []
 for rings, segments in ((4, 16), (8, 32), (16, 64)):
-    _, v = tool.slide_bodies(ellipsoid, point, normal, rings, segments, 0.125, 2000.0, 2300.0, 3e4, 30.0)
+    _, v = tool.slide_bodies(ellipsoid, point, normal, rings, segments, 0.125, 2000.0, 2300.0, 3e4, 30.0, 1e9)
     errors.append(abs(v / exact - 1.0))
     print("     %d x %d facets: volume %.2f m^3, smooth %.2f m^3, error %.3g %%" % (rings, segments, v, exact,
                                                                                    100 * errors[-1]))
@@ -67,7 +81,7 @@ orders = [math.log2(errors[k] / errors[k + 1]) for k in range(2)]
 check(all(1.8 < p < 2.2 for p in orders), "volume converges at order 2 (%.2f, %.2f)" % tuple(orders))
 check(errors[-1] < 5e-3, "16 x 64 facets within 0.5 %% of the smooth cap (%.3g %%)" % (100 * errors[-1]))
 
-# 3. Frame invariance: the same configuration moved and turned about z has the same block volume.
+# 4. Frame invariance: the same configuration moved and turned about z has the same block volume.
 turn, shift = math.radians(70.0), (1234.5, -876.0, 210.0)
 
 
@@ -78,12 +92,12 @@ def moved(p):
 
 n_turned = (normal[0] * math.cos(turn) - normal[1] * math.sin(turn),
             normal[0] * math.sin(turn) + normal[1] * math.cos(turn), normal[2])
-_, v0 = tool.slide_bodies(ellipsoid, point, normal, 8, 32, 0.125, 2000.0, 2300.0, 3e4, 30.0)
+_, v0 = tool.slide_bodies(ellipsoid, point, normal, 8, 32, 0.125, 2000.0, 2300.0, 3e4, 30.0, 1e9)
 other = tool.Ellipsoid(moved(ellipsoid.centre), ellipsoid.axes, 25.0 + 70.0)
-_, v1 = tool.slide_bodies(other, moved(point), n_turned, 8, 32, 0.125, 2000.0, 2300.0, 3e4, 30.0)
+_, v1 = tool.slide_bodies(other, moved(point), n_turned, 8, 32, 0.125, 2000.0, 2300.0, 3e4, 30.0, 1e9)
 check(abs(v1 / v0 - 1.0) < 1e-9, "moved and turned: same volume (%.3g relative)" % abs(v1 / v0 - 1.0))
 
-# 4. The seed's cap from a DEM of its planar face: the fitted face is z = x, the same blocks as the given plane.
+# 5. The seed's cap from a DEM of its planar face: the fitted face is z = x, the same blocks as the given plane.
 cell, x0, y0 = 0.5, -20.0, -50.0
 nc, nr = 200, 200
 rows = [[min(max(x0 + (c + 0.5) * cell, 0.0), 40.0) for c in range(nc)] for _ in range(nr)]
@@ -104,11 +118,11 @@ check(r1.returncode == 0 and r2.returncode == 0 and gap < 1e-6,
       "a face fitted to a planar DEM gives the plane's blocks (largest vertex gap %.3g m)" % gap)
 check("departs from it by up to" in r1.stdout, "the fit's departure is printed")
 
-# 5. Every block it writes is a valid convex polyhedron for talus.
+# 6. Every block it writes is a valid convex polyhedron for talus.
 v = subprocess.run([talus, "validate", hillside], capture_output=True, text=True)
 check(v.returncode == 0, "talus validate accepts the written hillside scene")
 
-# 6. A face that misses the ellipsoid is refused, nothing written.
+# 7. A face that misses the ellipsoid is refused, nothing written.
 missing = os.path.join(work, "missing.json")
 r = run_tool("--plane", "0", "0", "100", "0", "0", "1", "--ellipsoid", "0", "0", "0", "10", "10", "10",
              "--out", missing)
