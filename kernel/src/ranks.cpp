@@ -58,6 +58,9 @@ class ExchangeHost final : public Host {
   void build_halos(World& world) override;
   void gather_to_root(World& world) override { exchange_.gather_to_root(stores_of(world)); }
   void release_gathered(World& world) override { exchange_.release_gathered(stores_of(world)); }
+  std::vector<std::string> gather_texts(const std::vector<std::string>& mine) override {
+    return exchange_.gather_texts(mine);
+  }
 
  private:
   mpi::RankExchange exchange_;

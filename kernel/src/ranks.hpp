@@ -6,6 +6,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "talus/config.hpp"
 #include "talus/parallel.hpp"
@@ -37,6 +38,8 @@ class Host : public Parallel {
   // Rank 0 holds a copy of every particle (for the writers) until release.
   virtual void gather_to_root(World& world) = 0;
   virtual void release_gathered(World& world) = 0;
+  // Rank 0 gets every rank's texts, in rank order (its own first); the others get none.
+  virtual std::vector<std::string> gather_texts(const std::vector<std::string>& mine) = 0;
 };
 
 // halo_reach: the search radius plus the skin particles may move before the

@@ -158,6 +158,7 @@ int Simulation::run(const RunOptions& options) {
       check_finite();
       phases_.host += since_start_.lap();
       write_due_outputs(false);
+      share_warnings();
       print_new_warnings();
       // Every rank must take the checkpoint at the same step: clocks differ, rank 0's decides.
       bool minutes_due = checkpoint_minutes > 0 && progress.elapsed() - wall_at_last_checkpoint >= 60.0 * checkpoint_minutes;
@@ -183,6 +184,7 @@ int Simulation::run(const RunOptions& options) {
       if (sig) {
         progress.finish();
         write_due_outputs(true);
+        share_warnings();
         print_new_warnings();
         const std::string path = checkpoint();
         if (!root) return 128 + sig;
@@ -226,6 +228,7 @@ int Simulation::run(const RunOptions& options) {
   }
   if (root)
     for (auto& w : writers_) w.writer->close(world_);
+  share_warnings();
   print_new_warnings();
   std::vector<std::string> finish_lines;
   for (auto& stage : stages_)

@@ -99,6 +99,8 @@ class TALUS_API Simulation {
   std::vector<Boundary*> boundary_models() const;  // each once, in the order of the first body naming it
   RankFigures figures_over_ranks(std::uint64_t own_particle_steps) const;
   void print_new_warnings();
+  // On several ranks, collective: rank 0 adds every rank's new warnings to its log.
+  void share_warnings();
   void resort_particles();
   void check_finite() const;
   void write_due_outputs(bool force);
@@ -120,6 +122,7 @@ class TALUS_API Simulation {
   std::vector<std::uint8_t> escaped_;  // scratch, reused
   std::vector<std::uint8_t> removal_warned_;  // per body: its first removal was reported
   std::size_t warnings_printed_ = 0;
+  std::size_t warnings_shared_ = 0;  // this rank's log up to here went to rank 0
   std::unique_ptr<ranks::Host> ranks_;  // null on one rank
   double skin_ = 0.0;                   // how far a particle may move before the halos are rebuilt, m
   std::vector<Vec3> moved_from_;        // owned positions at the last rebuild, fluid then walls

@@ -151,6 +151,15 @@ void Simulation::rank_upkeep(bool resort_due) {
   rebuild_ranks();
 }
 
+void Simulation::share_warnings() {
+  if (!ranks_) return;
+  const auto& all = world_.warnings.all();
+  const std::vector<std::string> mine(all.begin() + static_cast<std::ptrdiff_t>(warnings_shared_), all.end());
+  if (ranks_->sum(static_cast<std::uint64_t>(mine.size())) > 0)
+    for (std::string& text : ranks_->gather_texts(mine)) world_.warnings.add(std::move(text));
+  warnings_shared_ = world_.warnings.all().size();
+}
+
 RankFigures Simulation::figures_over_ranks(std::uint64_t own_particle_steps) const {
   RankFigures f;
   f.count = ranks_->ranks();

@@ -258,6 +258,28 @@ void RankExchange::gather_to_root(std::span<ParticleStore* const> stores) {
   }
 }
 
+std::vector<std::string> RankExchange::gather_texts(const std::vector<std::string>& texts) const {
+  std::string mine;  // each text ends with a NUL
+  for (const std::string& t : texts) {
+    mine += t;
+    mine.push_back('\0');
+  }
+  const int bytes = message_size(mine.size());
+  std::vector<int> counts(nranks()), at(nranks());
+  MPI_Gather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_);
+  std::size_t total = 0;
+  for (std::size_t r = 0; r < nranks(); ++r) {
+    at[r] = message_size(total);
+    total += static_cast<std::size_t>(counts[r]);
+  }
+  std::string in(rank_ == 0 ? total : 0, '\0');
+  MPI_Gatherv(mine.data(), bytes, MPI_CHAR, in.data(), counts.data(), at.data(), MPI_CHAR, 0, comm_);
+  std::vector<std::string> out;
+  for (std::size_t begin = 0, end; (end = in.find('\0', begin)) != std::string::npos; begin = end + 1)
+    out.emplace_back(in, begin, end - begin);
+  return out;
+}
+
 void RankExchange::release_gathered(std::span<ParticleStore* const> stores) {
   if (own_before_gather_.size() != stores.size())
     throw std::logic_error("RankExchange::release_gathered without gather_to_root");

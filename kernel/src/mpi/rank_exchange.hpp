@@ -65,6 +65,8 @@ class TALUS_API RankExchange final : public Parallel {
   // copies off again (the halos are then rebuilt by the caller).
   void gather_to_root(std::span<ParticleStore* const> stores);
   void release_gathered(std::span<ParticleStore* const> stores);
+  // Rank 0 gets every rank's texts, in rank order; the others get none.
+  std::vector<std::string> gather_texts(const std::vector<std::string>& texts) const;
 
   // The place the cuts see for a particle: the centre of its cell.
   Vec3 cell_centre(const Vec3& x) const;
