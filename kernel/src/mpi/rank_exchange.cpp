@@ -244,18 +244,26 @@ void RankExchange::gather_to_root(std::span<ParticleStore* const> stores) {
       std::iota(rows.begin(), rows.end(), Index{0});
       pack_rows(*store, fields, rows, mine);
     }
-    const int bytes = message_size(mine.size());
-    std::vector<int> counts(nranks()), at(nranks());
-    MPI_Gather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_);
-    std::size_t total = 0;
-    for (std::size_t r = 0; r < nranks(); ++r) {
-      at[r] = message_size(total);
-      total += static_cast<std::size_t>(counts[r]);
-    }
-    std::vector<std::byte> in(rank_ == 0 ? total : 0);
-    MPI_Gatherv(mine.data(), bytes, MPI_BYTE, in.data(), counts.data(), at.data(), MPI_BYTE, 0, comm_);
+    std::vector<int> counts, at;
+    const std::vector<std::byte> in = gather_bytes(mine, counts, at);
     if (rank_ == 0) append_packets(*store, fields, in, counts, at);  // rank 0's own packet is empty
   }
+}
+
+std::vector<std::byte> RankExchange::gather_bytes(std::span<const std::byte> mine, std::vector<int>& counts,
+                                                  std::vector<int>& at) const {
+  const int bytes = message_size(mine.size());
+  counts.assign(nranks(), 0);
+  at.assign(nranks(), 0);
+  MPI_Gather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_);
+  std::size_t total = 0;
+  for (std::size_t r = 0; r < nranks(); ++r) {
+    at[r] = message_size(total);
+    total += static_cast<std::size_t>(counts[r]);
+  }
+  std::vector<std::byte> in(rank_ == 0 ? total : 0);
+  MPI_Gatherv(mine.data(), bytes, MPI_BYTE, in.data(), counts.data(), at.data(), MPI_BYTE, 0, comm_);
+  return in;
 }
 
 std::vector<std::string> RankExchange::gather_texts(const std::vector<std::string>& texts) const {
@@ -264,16 +272,9 @@ std::vector<std::string> RankExchange::gather_texts(const std::vector<std::strin
     mine += t;
     mine.push_back('\0');
   }
-  const int bytes = message_size(mine.size());
-  std::vector<int> counts(nranks()), at(nranks());
-  MPI_Gather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_);
-  std::size_t total = 0;
-  for (std::size_t r = 0; r < nranks(); ++r) {
-    at[r] = message_size(total);
-    total += static_cast<std::size_t>(counts[r]);
-  }
-  std::string in(rank_ == 0 ? total : 0, '\0');
-  MPI_Gatherv(mine.data(), bytes, MPI_CHAR, in.data(), counts.data(), at.data(), MPI_CHAR, 0, comm_);
+  std::vector<int> counts, at;
+  const std::vector<std::byte> bytes = gather_bytes(std::as_bytes(std::span(mine)), counts, at);
+  const std::string in(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   std::vector<std::string> out;
   for (std::size_t begin = 0, end; (end = in.find('\0', begin)) != std::string::npos; begin = end + 1)
     out.emplace_back(in, begin, end - begin);

@@ -84,6 +84,10 @@ class TALUS_API RankExchange final : public Parallel {
   // Sends packets[k] to neighbours[k] and receives into inbox[k] (sizes known).
   void swap_packets(std::span<const int> neighbours, std::span<const std::vector<std::byte>> packets,
                     std::span<std::vector<std::byte>> inbox) const;
+  // Rank 0 gets every rank's bytes one after the other (counts and offsets per
+  // rank in `counts`, `at`); the others get none.
+  std::vector<std::byte> gather_bytes(std::span<const std::byte> mine, std::vector<int>& counts,
+                                      std::vector<int>& at) const;
   // Other ranks whose region meets the box of half-width w about x, periodic images included.
   void ranks_near(const Vec3& x, double w, std::vector<int>& out) const;
 
