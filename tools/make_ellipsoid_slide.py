@@ -259,6 +259,8 @@ def parse(argv=None):
         ap.error("--cohesion must be >= 0 and --friction in [0, 90)")
     if args.plane and dot(args.plane[3:], args.plane[3:]) == 0:
         ap.error("--plane: the normal must not be zero")
+    if args.runout_scene and not args.dem:
+        ap.error("--runout-scene needs --dem: the failed mass runs out over the DEM")
     return args
 
 
