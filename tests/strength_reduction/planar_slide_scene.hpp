@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -19,6 +21,9 @@ struct SlabJoint {
 };
 
 nlohmann::json planar_slide(const SlabJoint& joint);
+// A block: a prism over y in [0, 1] of a counter-clockwise section polygon (x, z), 2038.7 kg/m^3, with a
+// perfectly plastic mohr_coulomb joint (1e9 N/m, phi 20 deg, c 10 kPa).
+nlohmann::json prism_block(const std::string& name, std::vector<std::pair<double, double>> section, bool fixed);
 // F = tan(phi)/tan(beta) + c/(gamma t sin(beta)).
 double closed_form(const SlabJoint& joint);
 

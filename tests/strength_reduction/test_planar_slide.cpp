@@ -173,19 +173,37 @@ TEST(PlanarSlide, TheTrialTableShowsHoldingJointsStickingAndFailingOnesSlipping)
   EXPECT_TRUE(fs::exists(r.directory + "/strength_reduction_limit_state.h5"));
 }
 
-TEST(PlanarSlide, ARestartContinuesTheSearchExactly) {
-  nlohmann::json scene = planar_slide({});
-  scene["checkpoint"] = {{"every", 0.3}, {"keep", 5}};
-  const FactorRun whole = run_scene(scene, "restart_whole");
+namespace {
+
+// The search restarted from its first checkpoint writes the same trial table and factor.
+void expect_restart_exact(const nlohmann::json& scene, const std::string& name) {
+  nlohmann::json s = scene;
+  s["checkpoint"] = {{"every", 0.3}, {"keep", 5}};
+  const FactorRun whole = run_scene(s, name + "_whole");
   ASSERT_EQ(whole.exit_code, 0) << whole.output;
   std::vector<fs::path> checkpoints;
   for (const auto& e : fs::directory_iterator(whole.directory))
     if (e.path().extension() == ".checkpoint") checkpoints.push_back(e.path());
   std::sort(checkpoints.begin(), checkpoints.end());
   ASSERT_GE(checkpoints.size(), 2u);
-  const FactorRun resumed = run_scene(scene, "restart_resumed", "--restart " + checkpoints.front().string());
+  const FactorRun resumed = run_scene(s, name + "_resumed", "--restart " + checkpoints.front().string());
   ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
   EXPECT_EQ(resumed.safety_factor, whole.safety_factor);
   // Every column but the wall time is the same.
   EXPECT_EQ(rows(resumed.directory + "/strength_reduction.csv", 1), rows(whole.directory + "/strength_reduction.csv", 1));
 }
+
+}  // namespace
+
+TEST(PlanarSlide, ARestartContinuesTheSearchExactly) { expect_restart_exact(planar_slide({}), "restart"); }
+
+TEST(PlanarSlide, ARestartWithMassScaledBodiesContinuesExactly) {
+  // A 1 m boulder resting on the slab: two free bodies of unequal frequency, so mass scaling gives them different
+  // inertia, which the restart must rebuild as it was.
+  nlohmann::json scene = planar_slide({});
+  const double c = std::sqrt(3.0) / 2.0, s = 0.5, x0 = 6.0, z0 = 10.0 - x0 * s / c;
+  scene["bodies"].push_back(
+      prism_block("boulder", {{x0, z0}, {x0 + c, z0 - s}, {x0 + c + s, z0 - s + c}, {x0 + s, z0 + c}}, false));
+  expect_restart_exact(scene, "restart_scaled");
+}
+

@@ -88,30 +88,6 @@ TEST(StrengthReductionInput, ABracketThatMissesTheFactorSaysWhichEndToMove) {
   EXPECT_NE(r.output.find("/pipeline/0/bracket/1"), std::string::npos) << r.output;
 }
 
-namespace {
-
-// A prism over y in [0, 1] of a counter-clockwise section polygon (x, z), faces listed outward.
-nlohmann::json prism_block(const std::string& name, std::vector<std::pair<double, double>> section, bool fixed) {
-  const std::size_t n = section.size();
-  nlohmann::json vertices = nlohmann::json::array(), faces = nlohmann::json::array();
-  for (int y = 0; y < 2; ++y)
-    for (const auto& [x, z] : section) vertices.push_back({x, double(y), z});
-  nlohmann::json front = nlohmann::json::array(), back = nlohmann::json::array();
-  for (std::size_t k = 0; k < n; ++k) {
-    front.push_back(k);
-    back.push_back(2 * n - 1 - k);
-  }
-  faces.push_back(front);
-  faces.push_back(back);
-  for (std::size_t k = 0; k < n; ++k) faces.push_back({k, n + k, n + (k + 1) % n, (k + 1) % n});
-  return {{"name", name}, {"kind", "block"}, {"density", 2038.7}, {"fixed", fixed},
-          {"shape", {{"polyhedron", {{"vertices", vertices}, {"faces", faces}}}}},
-          {"contact", {{"type", "mohr_coulomb"}, {"normal_stiffness", 1e9}, {"friction_angle", 20}, {"cohesion", 1e4},
-                       {"damping_ratio", 0}, {"shear_softening", "none"}}}};
-}
-
-}  // namespace
-
 TEST(StrengthReductionInput, APackOfBlocksOnLevelGroundHoldsAtEveryFactor) {
   // Four 2.5 m prisms packed 2 x 2 on a level floor cannot fail: every trial must reach equilibrium. Coincident
   // faces once clipped to 4 or 8 points and relabelled them from step to step, resetting the springs, and the
