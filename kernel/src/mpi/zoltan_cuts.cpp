@@ -30,7 +30,8 @@ ZoltanCuts::ZoltanCuts(MPI_Comm comm, int dim, const std::string& method, double
   Zoltan_Set_Param(zz_, "NUM_GID_ENTRIES", "1");
   Zoltan_Set_Param(zz_, "NUM_LID_ENTRIES", "1");
   Zoltan_Set_Param(zz_, "OBJ_WEIGHT_DIM", "1");
-  Zoltan_Set_Param(zz_, "RETURN_LISTS", "PARTS");
+  // Owners come from the kept cuts (owner()), so Zoltan returns no lists.
+  Zoltan_Set_Param(zz_, "RETURN_LISTS", "NONE");
   Zoltan_Set_Param(zz_, "KEEP_CUTS", "1");  // for owner() and ranks_meeting()
   Zoltan_Set_Param(zz_, "IMBALANCE_TOL", tol.c_str());
   // Points that share a cut coordinate go to one side: the caller passes cell
@@ -46,8 +47,8 @@ ZoltanCuts::ZoltanCuts(MPI_Comm comm, int dim, const std::string& method, double
   Zoltan_Set_Obj_List_Fn(
       zz_, [](void* self, int, int, ZOLTAN_ID_PTR gids, ZOLTAN_ID_PTR lids, int wdim, float* weights, int* ierr) {
         const auto& cuts = *static_cast<ZoltanCuts*>(self);
-        // Zoltan only moves cuts, never objects (RETURN_LISTS = PARTS): the
-        // local index serves as both ids.
+        // Zoltan only moves cuts, never objects: the local index serves as
+        // both ids.
         for (std::size_t i = 0; i < cuts.points_.size(); ++i) {
           lids[i] = static_cast<ZOLTAN_ID_TYPE>(i);
           gids[i] = static_cast<ZOLTAN_ID_TYPE>(i);
