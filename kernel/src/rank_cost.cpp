@@ -2,8 +2,6 @@
 
 #include <cstddef>
 
-#include "talus/neighbour_grid.hpp"
-
 namespace talus {
 
 namespace {
@@ -17,17 +15,19 @@ std::size_t pairs_within(const NeighbourGrid& grid, const Vec3& x, double radius
 
 }  // namespace
 
-std::vector<float> owned_particle_costs(const World& world, double radius) {
+const std::vector<float>& RankCost::measure(const World& world, double radius) {
   const ParticleStore& fluid = world.fluid;
   const ParticleStore& walls = world.boundary;
-  NeighbourGrid fluid_grid, wall_grid;
-  fluid_grid.configure(world.dim, world.lo, world.hi, radius, world.periodic);
-  wall_grid.configure(world.dim, world.lo, world.hi, radius, world.periodic);
-  fluid_grid.build(fluid.position());
-  wall_grid.build(walls.position());
+  fluid_grid_.configure(world.dim, world.lo, world.hi, radius, world.periodic);
+  wall_grid_.configure(world.dim, world.lo, world.hi, radius, world.periodic);
+  fluid_grid_.build(fluid.position());
+  wall_grid_.build(walls.position());
+  const NeighbourGrid& fluid_grid = fluid_grid_;
+  const NeighbourGrid& wall_grid = wall_grid_;
 
   const std::size_t nf = fluid.owned_size(), nw = walls.owned_size();
-  std::vector<float> cost(nf + nw);
+  cost_.resize(nf + nw);
+  std::vector<float>& cost = cost_;
   const auto xf = fluid.position();
   const auto xw = walls.position();
 #pragma omp parallel for schedule(static) if (nf > 4096)
@@ -35,7 +35,7 @@ std::vector<float> owned_particle_costs(const World& world, double radius) {
     cost[i] = static_cast<float>(1 + pairs_within(fluid_grid, xf[i], radius) + pairs_within(wall_grid, xf[i], radius));
 #pragma omp parallel for schedule(static) if (nw > 4096)
   for (std::size_t k = 0; k < nw; ++k) cost[nf + k] = static_cast<float>(1 + pairs_within(fluid_grid, xw[k], radius));
-  return cost;
+  return cost_;
 }
 
 }  // namespace talus

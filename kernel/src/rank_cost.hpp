@@ -7,13 +7,24 @@
 
 #include <vector>
 
+#include "talus/neighbour_grid.hpp"
 #include "talus/world.hpp"
 
 namespace talus {
 
-// One cost per owned row: the fluid's rows, then the boundary store's. The
-// pairs are counted over owned and halo rows, so a particle next to a cut
-// costs what it would on one rank.
-std::vector<float> owned_particle_costs(const World& world, double radius);
+class RankCost {
+ public:
+  // One cost per owned row: the fluid's rows, then the boundary store's. The
+  // pairs are counted over owned and halo rows, so a particle next to a cut
+  // costs what it would on one rank.
+  const std::vector<float>& measure(const World& world, double radius);
+  // The costs of the last measure().
+  const std::vector<float>& costs() const { return cost_; }
+
+ private:
+  // Kept between rebuilds, so that their buffers are not allocated anew.
+  NeighbourGrid fluid_grid_, wall_grid_;
+  std::vector<float> cost_;
+};
 
 }  // namespace talus

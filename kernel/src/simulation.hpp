@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "phase_times.hpp"
+#include "rank_cost.hpp"
 #include "run_summary.hpp"
 #include "scene.hpp"
 #include "talus/world.hpp"
@@ -87,7 +88,7 @@ class TALUS_API Simulation {
   void spread_over_ranks(bool restart);
   // After particles moved between ranks: cache order, halos, the wall models' rows.
   void settle_on_ranks();
-  // Measures every owned particle's cost (cost_); the busiest rank's over the mean.
+  // Measures every owned particle's cost (rank_cost_); the busiest rank's over the mean.
   double cost_imbalance();
   // The busiest rank's share over the mean share of what each rank has.
   double imbalance_over_ranks(double mine) const;
@@ -129,7 +130,7 @@ class TALUS_API Simulation {
   std::size_t fluid_over_ranks_ = 0;    // fluid particles on all ranks, counted at the last rebuild
   std::uint64_t rebuilds_ = 0, owned_rows_seen_ = 0, halo_rows_seen_ = 0;  // this rank's, at each rebuild
   double rebalance_above_ = 1.2;        // /ranks/rebalance_above
-  std::vector<float> cost_;             // each owned particle's cost, measured at the last rebuild
+  RankCost rank_cost_;                  // each owned particle's cost, measured at the last rebuild
   std::uint64_t rebalances_ = 0;        // new cuts after the first
   double worst_cost_imbalance_ = 1.0;   // the largest the run stepped with
   double cut_imbalance_ = 1.0;          // what the last new cuts achieved

@@ -86,7 +86,7 @@ void Simulation::rebuild_ranks() {
   // imbalance has grown by that factor again, not at every rebuild.
   const double trigger = cut_imbalance_ <= rebalance_above_ ? rebalance_above_ : cut_imbalance_ * rebalance_above_;
   if (imbalance > trigger) {
-    ranks_->rebalance(world_, cost_);
+    ranks_->rebalance(world_, rank_cost_.costs());
     ++rebalances_;
     settle_on_ranks();
     imbalance = cost_imbalance();
@@ -120,9 +120,8 @@ void Simulation::settle_on_ranks() {
 }
 
 double Simulation::cost_imbalance() {
-  cost_ = owned_particle_costs(world_, world_.kernel.support_radius());
   double mine = 0.0;
-  for (const float c : cost_) mine += c;
+  for (const float c : rank_cost_.measure(world_, world_.kernel.support_radius())) mine += c;
   return imbalance_over_ranks(mine);
 }
 
