@@ -230,11 +230,13 @@ void StrengthReduction::check_start(const World& world) const {
   if (c.size() == 0)
     params_.fail("", "no joints: no two blocks touch at the start (the slope's blocks must rest on each other "
                      "and on the fixed base)");
+  // Counted per rigid body: a clump's block may rest on its clump alone.
+  const std::vector<std::uint32_t>& body = dda_->rigid_body();
   std::vector<std::uint32_t> touching(b.size(), 0);
   const double margin = dda_->contact_margin();
   for (std::size_t k = 0; k < c.size(); ++k) {
-    ++touching[c.key[k].a];
-    ++touching[c.key[k].b];
+    ++touching[body[c.key[k].a]];
+    ++touching[body[c.key[k].b]];
     if (c.gap[k] < -margin)
       world.bodies[b.body[c.key[k].b]].params.fail(
           "shape", "blocks '" + b.name[c.key[k].a] + "' and '" + b.name[c.key[k].b] + "' overlap by " +
@@ -242,7 +244,7 @@ void StrengthReduction::check_start(const World& world) const {
                        number("%.3g", margin) + " m); the slope's blocks must fit without overlap");
   }
   for (std::size_t i = 0; i < b.size(); ++i)
-    if (!b.fixed[i] && touching[i] == 0)
+    if (!b.fixed[i] && touching[body[i]] == 0)
       world.bodies[b.body[i]].params.fail("shape", "block '" + b.name[i] + "' touches no other block at the "
                                                    "start: it would fall freely");
 }
