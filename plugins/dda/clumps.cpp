@@ -17,6 +17,7 @@ void DdaStage::build_clumps(const World& world, BlockSet& b) {
   lead_.resize(n);
   offset_.assign(n, {});
   body_radius_.resize(n);
+  body_mass_.assign(b.mass.begin(), b.mass.end());
   std::map<std::string, std::uint32_t> first;
   for (std::size_t i = 0; i < n; ++i) {
     lead_[i] = static_cast<std::uint32_t>(i);
@@ -71,6 +72,7 @@ void DdaStage::build_clumps(const World& world, BlockSet& b) {
     inverse_inertia_[l] = inverse(inertia);
     agility_[l] = 1.0 / mass + radius * radius / smallest_eigenvalue(inertia);
     body_radius_[l] = radius;
+    body_mass_[l] = mass;
     // The lead's velocity is the body's; each piece moves with the body's
     // rotation about the centroid.
     const Vec3 v = b.velocity[l], w = b.angular_velocity[l];

@@ -145,6 +145,7 @@ void DdaStage::build_blocks(World& world) {
   force_.assign(n, {});
   torque_.assign(n, {});
   stiffness_sum_.assign(n, 0.0);
+  body_omega2_.assign(n, 0.0);
   inertia_scale_.assign(n, 1.0);
   posed_.assign(n, {});
   box_lo_.assign(n, {});
@@ -300,7 +301,6 @@ void DdaStage::integrate(World& world, BlockSet& b, double t, double h) {
     const Quaternion q = b.orientation[i];
     const Vec3 centre = b.position[i] - rotate(q, offset_[i]);
     Vec3 force{}, torque{}, applied{}, applied_torque{};
-    double mass = 0.0;
     for (std::uint32_t k = member_begin_[i]; k < member_begin_[i + 1]; ++k) {
       const std::uint32_t m = members_[k];
       const Vec3 arm = b.position[m] - centre;
@@ -309,13 +309,12 @@ void DdaStage::integrate(World& world, BlockSet& b, double t, double h) {
       torque += b.external_torque[m] + torque_[m] + cross(arm, f);
       applied += b.external_force[m];
       applied_torque += b.external_torque[m] + cross(arm, b.external_force[m]);
-      mass += b.mass[m];
       potential -= b.mass[m] * dot(g, b.position[m]);
     }
     const Vec3 w_old = b.angular_velocity[i], l_old = momentum_[i];
     const Vec3 v_old = b.velocity[i] - cross(w_old, b.position[i] - centre);
     unbalanced = std::max({unbalanced, norm(force), norm(torque) / body_radius_[i]});
-    weight += mass * norm(g);
+    weight += body_mass_[i] * norm(g);
     ++dynamic_count;
     Vec3 damping_force{}, damping_torque{};
     if (local_damping_ > 0.0)
@@ -332,7 +331,7 @@ void DdaStage::integrate(World& world, BlockSet& b, double t, double h) {
     // kinetic energy 1/2 m v(t-h/2).v(t+h/2) (exactly conserved with the
     // potential at t for linear forces); at the start v(-h/2) = 2 v(0) - v(h/2).
     const Vec3 v_before = started_ ? v_old : 2.0 * v_old - v;
-    kinetic += 0.5 * scale * mass * dot(v_before, v);
+    kinetic += 0.5 * scale * body_mass_[i] * dot(v_before, v);
     work += dot(applied, 0.5 * (v_before + v)) * h;
     // w(i+1/2) = I^-1 L(i+1/2) with the inertia at the mid-step orientation
     // (two fixed-point passes from the previous w).
@@ -413,13 +412,13 @@ void DdaStage::update_time_step() {
   double omega2 = 0.0, slowest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < dynamic_.size(); ++i)
     if (dynamic_[i] && lead_[i] == i) {
-      stiffness_sum_[i] = agility_[i] * std::max(stiffness_sum_[i], 8.0 * k_max);
-      omega2 = std::max(omega2, stiffness_sum_[i]);
-      slowest = std::min(slowest, stiffness_sum_[i]);
+      body_omega2_[i] = agility_[i] * std::max(stiffness_sum_[i], 8.0 * k_max);
+      omega2 = std::max(omega2, body_omega2_[i]);
+      slowest = std::min(slowest, body_omega2_[i]);
     }
   if (mass_scaling_ && omega2 > 0.0) {
     for (std::size_t i = 0; i < dynamic_.size(); ++i)
-      if (dynamic_[i] && lead_[i] == i) inertia_scale_[i] = std::max(inertia_scale_[i], stiffness_sum_[i] / slowest);
+      if (dynamic_[i] && lead_[i] == i) inertia_scale_[i] = std::max(inertia_scale_[i], body_omega2_[i] / slowest);
     omega2 = slowest;
   }
   dt_stable_ = omega2 > 0.0 ? safety_ * 2.0 / std::sqrt(omega2) * (std::sqrt(1.0 + xi * xi) - xi)
@@ -432,11 +431,9 @@ void DdaStage::update_energy(World& world, BlockSet& b) {
     if (!dynamic_[i]) continue;
     potential -= b.mass[i] * dot(world.gravity, b.position[i]);
     if (lead_[i] != i) continue;
-    double mass = 0.0;
-    for (std::uint32_t k = member_begin_[i]; k < member_begin_[i + 1]; ++k) mass += b.mass[members_[k]];
     const Vec3 arm = rotate(b.orientation[i], offset_[i]);  // from the body's centroid to the lead's
     const Vec3 v = b.velocity[i] - cross(b.angular_velocity[i], arm);
-    kinetic += 0.5 * inertia_scale_[i] * mass * norm2(v) + 0.5 * dot(b.angular_velocity[i], momentum_[i]);
+    kinetic += 0.5 * inertia_scale_[i] * body_mass_[i] * norm2(v) + 0.5 * dot(b.angular_velocity[i], momentum_[i]);
   }
   b.energy.kinetic = kinetic;
   b.energy.potential = potential;

@@ -133,6 +133,7 @@ class DdaStage final : public Stage {
   std::vector<std::uint32_t> lead_;              // per block: its body's lead block
   std::vector<std::uint32_t> member_begin_, members_;  // per block: the blocks of the body it leads (CSR)
   std::vector<Vec3> offset_;                     // per block: centroid from its body's centroid, body frame
+  std::vector<double> body_mass_;                // per lead: its body's mass
   std::vector<double> body_radius_;              // per lead: farthest point of its body from the centroid
   std::vector<PrescribedMotion> motion_;
   std::vector<Vec3> start_position_;
@@ -159,7 +160,8 @@ class DdaStage final : public Stage {
   std::vector<Fresh> gathered_;
   ContactSet contacts_, previous_;
   std::vector<std::size_t> model_begin_;          // contacts_ range of each model
-  std::vector<double> stiffness_sum_;             // per block: its contact stiffness, then its omega^2 bound
+  std::vector<double> stiffness_sum_;             // per lead: its body's contact stiffness, for the time step
+  std::vector<double> body_omega2_;               // per lead: its body's own bound on omega^2
   std::vector<double> inertia_scale_;             // per block: inertia over the true one (1 without mass scaling)
 
   BlockEnergy* energy_ = nullptr;  // world.blocks->energy, for checkpoints
