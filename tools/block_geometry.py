@@ -41,9 +41,12 @@ def rounded(points):
     return [[round(x, 9) for x in p] for p in points]
 
 
-def polyhedron(vertices, faces):
-    """The scene's `polyhedron` shape of a convex solid."""
-    return {"polyhedron": {"vertices": rounded(vertices), "faces": oriented(vertices, faces)}}
+def polygon_area(points):
+    """Area of a planar polygon given by its corners in order."""
+    total = (0.0, 0.0, 0.0)
+    for k in range(1, len(points) - 1):
+        total = add(total, cross(sub(points[k], points[0]), sub(points[k + 1], points[0])))
+    return 0.5 * math.sqrt(dot(total, total))
 
 
 def volume(vertices, faces):

@@ -46,23 +46,3 @@ def write_asc(path, values, x0, y0, cell, nodata=-9999.0):
         for row in values:
             f.write(" ".join(f"{v:.6f}" for v in row) + "\n")
 
-
-def bilinear(values, extent, nodata, x, y):
-    """Bilinear interpolation between cell centres at the points (x, y) (arrays); NaN outside the centres' hull
-    or next to a nodata cell."""
-    nr, nc = values.shape
-    cell = (extent[1] - extent[0]) / nc
-    fx = (np.asarray(x, dtype=float) - extent[0]) / cell - 0.5
-    fy = (extent[3] - np.asarray(y, dtype=float)) / cell - 0.5
-    inside = (fx >= 0) & (fx <= nc - 1) & (fy >= 0) & (fy <= nr - 1)
-    c0 = np.clip(np.floor(fx), 0, max(nc - 2, 0)).astype(int)
-    r0 = np.clip(np.floor(fy), 0, max(nr - 2, 0)).astype(int)
-    c1, r1 = np.minimum(c0 + 1, nc - 1), np.minimum(r0 + 1, nr - 1)
-    tx, ty = np.clip(fx - c0, 0, 1), np.clip(fy - r0, 0, 1)
-    corners = [values[r0, c0], values[r0, c1], values[r1, c0], values[r1, c1]]
-    z = ((1 - tx) * (1 - ty) * corners[0] + tx * (1 - ty) * corners[1] + (1 - tx) * ty * corners[2]
-         + tx * ty * corners[3])
-    bad = ~inside
-    for corner in corners:
-        bad |= corner == nodata
-    return np.where(bad, np.nan, z)

@@ -29,7 +29,7 @@ import math
 import os
 import sys
 
-from block_geometry import add, cross, dot, oriented, rounded, sub, unit, volume
+from block_geometry import add, cross, dot, oriented, polygon_area, rounded, sub, unit, volume
 
 
 
@@ -97,12 +97,6 @@ def joint(cohesion, friction, point_stiffness):
     return {"type": "mohr_coulomb", "normal_stiffness": point_stiffness, "friction_angle": friction,
             "cohesion": cohesion, "damping_ratio": 0.0, "shear_softening": "none"}
 
-
-def polygon_area(points):
-    total = (0.0, 0.0, 0.0)
-    for k in range(1, len(points) - 1):
-        total = add(total, cross(sub(points[k], points[0]), sub(points[k + 1], points[0])))
-    return 0.5 * math.sqrt(dot(total, total))
 
 
 def slide_bodies(ellipsoid, face_point, face_normal, rings, segments, base_depth, density, base_density, cohesion,

@@ -15,6 +15,7 @@ talus, source, work = sys.argv[1:4]
 sys.path.insert(0, os.path.join(source, "tools"))
 import make_ellipsoid_slide as tool  # noqa: E402
 import make_spherical_cap  # noqa: E402
+from block_geometry import polygon_area  # noqa: E402
 import numpy as np  # noqa: E402
 from esri_grid import write_asc  # noqa: E402
 
@@ -59,7 +60,7 @@ per_area, areas = [], []
 for body in cap["bodies"][:-1]:
     vertices = body["shape"]["polyhedron"]["vertices"]
     corners = len(vertices) // 2
-    areas.append(tool.polygon_area([tuple(v) for v in vertices[:corners]]))
+    areas.append(polygon_area([tuple(v) for v in vertices[:corners]]))
     per_area.append(body["contact"]["normal_stiffness"] * corners / areas[-1])
 spread = max(per_area) / min(per_area) - 1.0
 check(spread < 1e-5 and abs(per_area[0] / 1e9 - 1.0) < 1e-5 and max(areas) / min(areas) > 2.0,
