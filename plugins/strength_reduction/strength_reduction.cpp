@@ -107,9 +107,9 @@ ParamSet StrengthReduction::describe() {
       .doc("local non-viscous damping coefficient alpha (3DEC): each force and torque component is reduced by "
            "alpha |F| against the block's velocity");
   p.boolean("mass_scaling").default_value(true)
-      .doc("give each free block the inertia that brings its stable frequency down to the slowest block's "
-           "(3DEC's density scaling for statics): equilibria are unchanged, small blocks no longer set the step, "
-           "and many-block slopes relax in far fewer steps; gravity keeps the true mass");
+      .doc("give each free body the inertia that brings its stable frequency down to the slowest body's "
+           "(3DEC's density scaling for statics), so that small blocks no longer set the step; gravity keeps the "
+           "true mass, so equilibria are unchanged");
   p.integer("window").min(10).default_value(500)
       .doc("steps between displacement checks; a displacement that grows three windows running without "
            "slowing down fails the trial");
