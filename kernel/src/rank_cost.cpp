@@ -22,19 +22,16 @@ const std::vector<float>& RankCost::measure(const World& world, double radius) {
   wall_grid_.configure(world.dim, world.lo, world.hi, radius, world.periodic);
   fluid_grid_.build(fluid.position());
   wall_grid_.build(walls.position());
-  const NeighbourGrid& fluid_grid = fluid_grid_;
-  const NeighbourGrid& wall_grid = wall_grid_;
 
   const std::size_t nf = fluid.owned_size(), nw = walls.owned_size();
   cost_.resize(nf + nw);
-  std::vector<float>& cost = cost_;
   const auto xf = fluid.position();
   const auto xw = walls.position();
 #pragma omp parallel for schedule(static) if (nf > 4096)
   for (std::size_t i = 0; i < nf; ++i)
-    cost[i] = static_cast<float>(1 + pairs_within(fluid_grid, xf[i], radius) + pairs_within(wall_grid, xf[i], radius));
+    cost_[i] = static_cast<float>(1 + pairs_within(fluid_grid_, xf[i], radius) + pairs_within(wall_grid_, xf[i], radius));
 #pragma omp parallel for schedule(static) if (nw > 4096)
-  for (std::size_t k = 0; k < nw; ++k) cost[nf + k] = static_cast<float>(1 + pairs_within(fluid_grid, xw[k], radius));
+  for (std::size_t k = 0; k < nw; ++k) cost_[nf + k] = static_cast<float>(1 + pairs_within(fluid_grid_, xw[k], radius));
   return cost_;
 }
 
