@@ -15,8 +15,9 @@ packages=(
   # that a GCC-built talus loads it (the test skips, saying so, without them).
   clang libomp-dev
   # Runs over MPI ranks (CMake's TALUS_WITH_MPI=AUTO builds it when these are present):
-  # Open MPI for the messages, Zoltan for the partition.
-  libopenmpi-dev openmpi-bin libtrilinos-zoltan-dev
+  # Open MPI for the messages, Zoltan for the partition, parallel HDF5 for the one
+  # output file all ranks write together (the MPI build links it instead of the serial one).
+  libopenmpi-dev openmpi-bin libtrilinos-zoltan-dev libhdf5-openmpi-dev
 )
 
 missing=()

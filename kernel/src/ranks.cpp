@@ -48,6 +48,8 @@ class ExchangeHost final : public Host {
   void sum(std::span<double> v) const override { exchange_.sum(v); }
   double max(double v) const override { return exchange_.max(v); }
   double min(double v) const override { return exchange_.min(v); }
+  std::uint64_t sum_before(std::uint64_t v) const override { return exchange_.sum_before(v); }
+  int communicator() const override { return exchange_.communicator(); }
   void refresh_halo(ParticleStore& store, std::span<const std::string> fields) override {
     exchange_.refresh_halo(store, fields);
   }

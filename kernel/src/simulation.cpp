@@ -68,8 +68,8 @@ int Simulation::run(const RunOptions& options) {
     throw RunError("error: output folder " + output_directory_ + " is not writable: " + std::strerror(errno));
 
   OutputContext context{output_directory_, scene_.name, scene_.text, TALUS_VERSION_STRING, !options.restart.empty()};
-  if (root)
-    for (auto& w : writers_) w.writer->open(context, world_);
+  for (auto& w : writers_)
+    if (runs_here(w)) w.writer->open(context, world_);
 
   const ParamValues& time = scene_.values.object("time");
   const double dt_max = time.has("dt_max") ? time.real("dt_max") : std::numeric_limits<double>::infinity();
@@ -187,8 +187,8 @@ int Simulation::run(const RunOptions& options) {
         share_warnings();
         print_new_warnings();
         const std::string path = checkpoint();
+        close_writers();
         if (!root) return 128 + sig;
-        for (auto& w : writers_) w.writer->close(world_);
         // The resume command repeats the options that shape the run (threads: the same result bit for bit;
         // another rank count gives it to round-off).
         const std::string threads = options.threads > 0 ? " --threads " + std::to_string(options.threads) : "";
@@ -204,13 +204,13 @@ int Simulation::run(const RunOptions& options) {
   } catch (const RunError&) {
     progress.finish();
     print_new_warnings();
-    if (root)
-      for (auto& w : writers_) {
-        try {
-          w.writer->close(world_);
-        } catch (const std::exception&) {
-        }
+    for (auto& w : writers_) {
+      if (!runs_here(w)) continue;
+      try {
+        w.writer->close(world_);
+      } catch (const std::exception&) {
       }
+    }
     throw;
   }
   progress.finish();
@@ -226,8 +226,7 @@ int Simulation::run(const RunOptions& options) {
     world_.wall_crossings = ranks_->sum(static_cast<std::uint64_t>(world_.wall_crossings));
     gather_for_writers();
   }
-  if (root)
-    for (auto& w : writers_) w.writer->close(world_);
+  close_writers();
   share_warnings();
   print_new_warnings();
   std::vector<std::string> finish_lines;

@@ -105,6 +105,10 @@ class TALUS_API Simulation {
   void resort_particles();
   void check_finite() const;
   void write_due_outputs(bool force);
+  // Whether this rank runs the writer: rank 0 does; on several ranks, every
+  // rank runs one that writes its owned rows into a shared file.
+  bool runs_here(const ScheduledWriter& w) const;
+  void close_writers();
   std::string last_output() const;
 
   Stopwatch since_start_;  // first member: set-up is timed from the scene on

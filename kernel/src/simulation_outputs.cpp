@@ -60,27 +60,40 @@ std::string Simulation::last_output() const {
   return newest + " (t = " + fixed(last_output_time_) + " s)";
 }
 
-// Every rank keeps the schedule; on several ranks the writers run on rank 0
-// over a copy of every particle, gathered once for all the writers due.
+bool Simulation::runs_here(const ScheduledWriter& w) const {
+  return ranks::rank() == 0 || (ranks_ && w.writer->writes_on_every_rank());
+}
+
+void Simulation::close_writers() {
+  for (auto& w : writers_)
+    if (runs_here(w)) w.writer->close(world_);
+}
+
+// Every rank keeps the schedule. On several ranks the writers that share a
+// file run on every rank first; the others run on rank 0 over a copy of every
+// particle, gathered once for all of them that are due.
 void Simulation::write_due_outputs(bool force) {
+  auto eps = [&](const ScheduledWriter& w) { return w.every_steps ? 0.0 : schedule_eps(world_.end_time, w.every); };
   auto due = [&](const ScheduledWriter& w) {
-    const double eps = w.every_steps ? 0.0 : schedule_eps(world_.end_time, w.every);
-    return force || (w.every_steps ? world_.step >= w.next_step : world_.time >= w.next_time - eps);
+    return force || (w.every_steps ? world_.step >= w.next_step : world_.time >= w.next_time - eps(w));
   };
+  auto gathered = [&](const ScheduledWriter& w) { return ranks_ && !w.writer->writes_on_every_rank(); };
   if (std::none_of(writers_.begin(), writers_.end(), due)) return;
-  gather_for_writers();
+  for (auto& w : writers_)
+    if (due(w) && !gathered(w)) w.writer->write(world_);
+  const bool gather = std::any_of(writers_.begin(), writers_.end(), [&](const auto& w) { return due(w) && gathered(w); });
+  if (gather) gather_for_writers();
   for (auto& w : writers_) {
     if (!due(w)) continue;
-    const double eps = w.every_steps ? 0.0 : schedule_eps(world_.end_time, w.every);
-    if (ranks::rank() == 0) w.writer->write(world_);
+    if (gathered(w) && ranks::rank() == 0) w.writer->write(world_);
     last_output_time_ = world_.time;
     if (w.every_steps) {
       while (w.next_step <= world_.step) w.next_step += w.every_steps;
     } else {
-      w.next_time = next_due(w.next_time, w.every, world_.time, eps);
+      w.next_time = next_due(w.next_time, w.every, world_.time, eps(w));
     }
   }
-  release_after_writers();
+  if (gather) release_after_writers();
 }
 
 void Simulation::write_checkpoint(const std::string& path) {

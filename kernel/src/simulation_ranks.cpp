@@ -1,8 +1,9 @@
 // A run spread over MPI ranks (`mpirun -np N talus run SCENE`): every rank
 // builds the whole world from the scene, keeps its share, and between steps
 // moves particles to their owners and rebuilds the halos when a particle has
-// moved half the skin, one left the domain, or the re-sort is due. Writers run
-// on rank 0 over a gathered copy of every particle.
+// moved half the skin, one left the domain, or the re-sort is due. Writers
+// that share a file (parallel HDF5) run on every rank; the others on rank 0
+// over a gathered copy of every particle.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

@@ -89,16 +89,31 @@ Handle open_group(hid_t parent, const std::string& name, const std::string& path
 bool exists(hid_t parent, const std::string& name) { return H5Lexists(parent, name.c_str(), H5P_DEFAULT) > 0; }
 
 void write_dataset(hid_t parent, const std::string& name, hid_t file_type, hid_t mem_type, const void* data,
-                   std::uint64_t rows, std::uint64_t cols, const std::string& path) {
-  const hsize_t dims[2] = {rows, cols};
-  Handle space(
-      check(H5Screate_simple(cols > 0 ? 2 : 1, dims, nullptr), "cannot describe dataset " + name + " in", path),
-      H5Sclose);
+                   std::uint64_t rows, std::uint64_t cols, const std::string& path, const SharedRows* shared) {
+  const int rank = cols > 0 ? 2 : 1;
+  const hsize_t dims[2] = {shared ? shared->total : rows, cols};
+  const std::string describe = "cannot describe dataset " + name + " in", write = "cannot write dataset " + name + " to";
+  Handle space(check(H5Screate_simple(rank, dims, nullptr), describe, path), H5Sclose);
   Handle set(check(H5Dcreate2(parent, name.c_str(), file_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                    "cannot create dataset " + name + " in", path),
              H5Dclose);
-  if (rows > 0)
-    check(H5Dwrite(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "cannot write dataset " + name + " to", path);
+  if (!shared) {
+    if (rows > 0) check(H5Dwrite(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), write, path);
+    return;
+  }
+  // Every rank takes part in the collective write, one with no rows too.
+  if (dims[0] == 0) return;
+  const hsize_t start[2] = {shared->first, 0}, count[2] = {rows, cols};
+  const hsize_t memory_rows[2] = {rows > 0 ? rows : 1, cols};
+  Handle memory(check(H5Screate_simple(rank, memory_rows, nullptr), describe, path), H5Sclose);
+  if (rows > 0) {
+    check(H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, count, nullptr), describe, path);
+  } else {
+    check(H5Sselect_none(space), describe, path);
+    check(H5Sselect_none(memory), describe, path);
+  }
+  const double none = 0.0;  // HDF5 wants a buffer even when it reads nothing from it
+  check(H5Dwrite(set, mem_type, memory, space, shared->transfer, rows > 0 ? data : &none), write, path);
 }
 
 namespace {

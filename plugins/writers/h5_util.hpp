@@ -68,9 +68,18 @@ Handle create_group(hid_t parent, const std::string& name, const std::string& pa
 Handle open_group(hid_t parent, const std::string& name, const std::string& path);
 bool exists(hid_t parent, const std::string& name);
 
-// A 1-D (rows) or 2-D (rows x cols) dataset of `file_type` from native data.
+// Where one MPI rank's rows go in a dataset the ranks write together: from
+// row `first` of `total`, in a transfer every rank takes part in (h5_ranks.hpp).
+struct SharedRows {
+  std::uint64_t total = 0;
+  std::uint64_t first = 0;
+  hid_t transfer = H5P_DEFAULT;
+};
+
+// A 1-D (rows) or 2-D (rows x cols) dataset of `file_type` from native data;
+// with `shared`, the `rows` given are this rank's part of it.
 void write_dataset(hid_t parent, const std::string& name, hid_t file_type, hid_t mem_type, const void* data,
-                   std::uint64_t rows, std::uint64_t cols, const std::string& path);
+                   std::uint64_t rows, std::uint64_t cols, const std::string& path, const SharedRows* shared = nullptr);
 void write_strings(hid_t parent, const std::string& name, std::span<const std::string> values, const std::string& path);
 
 void set_attribute(hid_t object, const std::string& name, double value, const std::string& path);

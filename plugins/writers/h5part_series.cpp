@@ -6,7 +6,9 @@
 #include <utility>
 
 #include "file_io.hpp"
+#include "h5_ranks.hpp"
 #include "h5_util.hpp"
+#include "talus/parallel.hpp"
 
 namespace talus::writers {
 
@@ -40,21 +42,26 @@ std::vector<FrameInfo> frames_up_to(const std::string& path, std::uint64_t last_
 }
 }  // namespace
 
-void H5PartSeries::start(std::string path, bool sync, RootWriter root, const std::uint64_t* resume_step) {
+void H5PartSeries::start(std::string path, bool sync, RootWriter root, const std::uint64_t* resume_step,
+                         const Parallel* shared_by) {
   path_ = std::move(path);
   working_ = path_ + ".tmp";
   previous_ = path_ + ".prev";
   sync_ = sync;
   root_ = std::move(root);
+  ranks_ = shared_by && shared_by->ranks() > 1 ? shared_by : nullptr;
   working_exists_ = false;
   working_frames_ = 0;
   frames_ = 0;
   resumed_.clear();
-  ::unlink(previous_.c_str());  // left over from a crash between two renames
+  if (writes_files()) ::unlink(previous_.c_str());  // left over from a crash between two renames
   published_has_later_ = false;
   if (resume_step && file_exists(path_)) resumed_ = frames_up_to(path_, *resume_step, published_has_later_);
   frames_ = resumed_.size();
 }
+
+// The one process that creates, renames and removes the files.
+bool H5PartSeries::writes_files() const { return !ranks_ || ranks_->rank() == 0; }
 
 void H5PartSeries::catch_up(hid_t working) {
   if (working_frames_ >= frames_) return;
@@ -77,9 +84,7 @@ void H5PartSeries::catch_up(hid_t working) {
   working_frames_ = frames_;
 }
 
-void H5PartSeries::append(const FrameWriter& frame) {
-  h5::QuietErrors quiet;
-  const std::uint64_t index = frames_;
+void H5PartSeries::write_working(const std::function<void(hid_t)>& write) {
   try {
     h5::Handle file;
     if (working_exists_) {
@@ -100,7 +105,7 @@ void H5PartSeries::append(const FrameWriter& frame) {
       root_(file, working_);
     }
     catch_up(file);
-    frame(file, index, working_);
+    write(file);
     h5::check(H5Fflush(file, H5F_SCOPE_GLOBAL), "cannot write", working_);
     if (!file.close()) h5::check(herr_t(-1), "cannot write", working_);
   } catch (...) {
@@ -110,7 +115,52 @@ void H5PartSeries::append(const FrameWriter& frame) {
     ::unlink(working_.c_str());
     throw;
   }
+}
 
+// Collective: every rank opens the working copy and writes its rows. An error
+// on any rank stops the run on every rank (ranks::abort_all), so no rank waits
+// for one that gave up.
+void H5PartSeries::write_shared_rows(const FrameWriter& rows, std::uint64_t index) {
+  try {
+    h5::Handle access = h5::shared_file_access(*ranks_, working_);
+    h5::Handle file(h5::check(H5Fopen(working_.c_str(), H5F_ACC_RDWR, access), "cannot open", working_), H5Fclose);
+    rows(file, index, working_);
+    if (!file.close()) h5::check(herr_t(-1), "cannot write", working_);
+  } catch (...) {
+    if (writes_files()) {
+      working_exists_ = false;
+      ::unlink(working_.c_str());
+    }
+    throw;
+  }
+}
+
+void H5PartSeries::append(const FrameWriter& rows, const FrameWriter& whole) {
+  h5::QuietErrors quiet;
+  const std::uint64_t index = frames_;
+  if (!ranks_) {
+    write_working([&](hid_t file) {
+      rows(file, index, working_);
+      if (whole) whole(file, index, working_);
+    });
+    publish_frame(index);
+    return;
+  }
+  // Rank 0 readies the copy (root attributes, earlier frames) alone; the
+  // ranks meet before each step, so that no rank opens a file another has open.
+  if (writes_files()) write_working([](hid_t) {});
+  ranks_->max(0.0);
+  write_shared_rows(rows, index);
+  ranks_->max(0.0);
+  if (!writes_files()) {
+    frames_ = index + 1;
+    return;
+  }
+  if (whole) write_working([&](hid_t file) { whole(file, index, working_); });
+  publish_frame(index);
+}
+
+void H5PartSeries::publish_frame(std::uint64_t index) {
   // Keep the old published copy (it lacks only this frame) as the next
   // working copy; without hard links the next frame rebuilds it from scratch.
   // Not when it still holds the interrupted run's frames after a resume's: the
@@ -132,6 +182,7 @@ void H5PartSeries::append(const FrameWriter& frame) {
 }
 
 void H5PartSeries::finish() {
+  if (!writes_files()) return;
   ::unlink(working_.c_str());
   ::unlink(previous_.c_str());
   working_exists_ = false;

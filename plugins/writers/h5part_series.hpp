@@ -11,6 +11,10 @@
 //      the next working copy.
 // A crash at any point leaves NAME as the last complete file; each frame is
 // written twice (2x I/O, and 2x disk until close(), which removes NAME.tmp).
+//
+// Shared by several MPI ranks, step 1 opens NAME.tmp on every rank through
+// parallel HDF5 for the rows each rank owns; rank 0 alone readies the copy
+// before, adds what it holds whole (the blocks) after, and publishes.
 #pragma once
 
 #include <hdf5.h>
@@ -19,6 +23,10 @@
 #include <functional>
 #include <string>
 #include <vector>
+
+namespace talus {
+class Parallel;
+}
 
 namespace talus::writers {
 
@@ -38,9 +46,13 @@ class H5PartSeries {
 
   // Starts a series at `path`. With `resume_step` (a restart), frames of an
   // existing file whose "step" attribute is <= *resume_step are kept and the
-  // later ones dropped; otherwise the series starts empty.
-  void start(std::string path, bool sync, RootWriter root, const std::uint64_t* resume_step = nullptr);
-  void append(const FrameWriter& frame);
+  // later ones dropped; otherwise the series starts empty. With `shared_by`
+  // (several ranks, parallel HDF5), every rank of it starts and appends.
+  void start(std::string path, bool sync, RootWriter root, const std::uint64_t* resume_step = nullptr,
+             const Parallel* shared_by = nullptr);
+  // One frame: `rows` writes each rank's rows (on every rank when shared);
+  // `whole`, when given, what rank 0 holds whole.
+  void append(const FrameWriter& rows, const FrameWriter& whole = {});
   // Removes the working copy; the published file stays.
   void finish();
 
@@ -50,11 +62,18 @@ class H5PartSeries {
   const std::vector<FrameInfo>& resumed_frames() const { return resumed_; }
 
  private:
+  bool writes_files() const;
   void catch_up(hid_t working);
+  // Opens (or creates) the working copy alone, brings it up to the published
+  // frames, runs `write` on it and closes it.
+  void write_working(const std::function<void(hid_t)>& write);
+  void write_shared_rows(const FrameWriter& rows, std::uint64_t index);
+  void publish_frame(std::uint64_t index);
 
   std::string path_, working_, previous_;
   bool sync_ = true;
   RootWriter root_;
+  const Parallel* ranks_ = nullptr;  // set when several ranks share the file
   std::uint64_t frames_ = 0;          // frames in the published file
   std::uint64_t working_frames_ = 0;  // frames already in the working copy
   bool working_exists_ = false;

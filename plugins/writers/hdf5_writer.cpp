@@ -5,9 +5,11 @@
 #include "block_states.hpp"
 #include "field_select.hpp"
 #include "file_io.hpp"
+#include "h5_ranks.hpp"
 #include "h5_util.hpp"
 #include "talus/output_name.hpp"
 #include "talus/blocks.hpp"
+#include "talus/parallel.hpp"
 #include "talus/world.hpp"
 
 namespace talus::writers {
@@ -61,7 +63,8 @@ void Hdf5Writer::start(Output& out, const std::string& name, const char* store, 
   const std::uint64_t resume_step = world.step;
   out.series.start(
       join_path(context_.directory, name), sync_,
-      [this, store](hid_t f, const std::string& p) { write_root(f, store, p); }, resume ? &resume_step : nullptr);
+      [this, store](hid_t f, const std::string& p) { write_root(f, store, p); }, resume ? &resume_step : nullptr,
+      ranks_);
   out.frames.clear();
   for (const auto& f : out.series.resumed_frames()) out.frames.push_back({f.time, f.particles});
   out.xdmf_path = xdmf_ ? join_path(context_.directory, with_extension(name, ".xmf")) : std::string();
@@ -70,8 +73,11 @@ void Hdf5Writer::start(Output& out, const std::string& name, const char* store, 
 // An unknown field in the list is refused before the run writes anything.
 void Hdf5Writer::check(const World& world) const { select_fields(world.fluid, params_, true); }
 
+bool Hdf5Writer::writes_on_every_rank() const { return h5::shared_files(); }
+
 void Hdf5Writer::open(const OutputContext& context, const World& world) {
   context_ = context;
+  ranks_ = world.parallel().ranks() > 1 && writes_on_every_rank() ? &world.parallel() : nullptr;
   check_writable_directory(context.directory);
   run_ = RunInfo{world.dim,
                  {world.lo.x, world.lo.y, world.lo.z},
@@ -114,18 +120,20 @@ void Hdf5Writer::write_root(hid_t file, const char* store, const std::string& pa
 }
 
 void Hdf5Writer::write_particles(hid_t file, std::uint64_t index, const World& world, const ParticleStore& store,
-                                 const std::vector<FieldInfo>& fields, bool with_blocks, const std::string& path) {
-  const std::size_t n = store.size();
+                                 const std::vector<FieldInfo>& fields, const h5::SharedRows* shared,
+                                 const std::string& path) {
+  const std::size_t n = store.owned_size();
   h5::Handle group = h5::create_group(file, step_group(index), path);
   h5::set_attribute(group, "TimeValue", world.time, path);
   h5::set_attribute(group, "step", static_cast<std::uint64_t>(world.step), path);
-  h5::set_attribute(group, "particles", static_cast<std::uint64_t>(n), path);
-  h5::set_attribute(group, "removed", static_cast<std::uint64_t>(world.removed), path);
+  h5::set_attribute(group, "particles", shared ? shared->total : static_cast<std::uint64_t>(n), path);
+  const auto removed = static_cast<std::uint64_t>(world.removed);
+  h5::set_attribute(group, "removed", ranks_ ? ranks_->sum(removed) : removed, path);
 
   const hid_t real_type = single_ ? H5T_IEEE_F32LE : H5T_IEEE_F64LE;
   auto write_real = [&](const std::string& name, const double* data, const std::string& unit,
                         const std::string* vector_name, int component) {
-    h5::write_dataset(group, name, real_type, H5T_NATIVE_DOUBLE, data, n, 0, path);
+    h5::write_dataset(group, name, real_type, H5T_NATIVE_DOUBLE, data, n, 0, path, shared);
     h5::Handle set(H5Dopen2(group, name.c_str(), H5P_DEFAULT), H5Dclose);
     h5::set_attribute(set, "unit", std::string_view(unit), path);
     if (vector_name) {
@@ -155,27 +163,40 @@ void Hdf5Writer::write_particles(hid_t file, std::uint64_t index, const World& w
         write_vector(store.vector(f.name), f.name, f.unit, false);
         break;
       case FieldType::integer: {
-        h5::write_dataset(group, f.name, H5T_STD_I32LE, H5T_NATIVE_INT32, store.integer(f.name).data(), n, 0, path);
+        h5::write_dataset(group, f.name, H5T_STD_I32LE, H5T_NATIVE_INT32, store.integer(f.name).data(), n, 0, path,
+                          shared);
         h5::Handle set(H5Dopen2(group, f.name.c_str(), H5P_DEFAULT), H5Dclose);
         h5::set_attribute(set, "unit", std::string_view(f.unit), path);
         break;
       }
       case FieldType::id: {
-        h5::write_dataset(group, f.name, H5T_STD_U64LE, H5T_NATIVE_UINT64, store.ids().data(), n, 0, path);
+        h5::write_dataset(group, f.name, H5T_STD_U64LE, H5T_NATIVE_UINT64, store.ids().data(), n, 0, path, shared);
         break;
       }
     }
   }
-  if (with_blocks && world.blocks && world.blocks->size() > 0)
-    write_block_states(file, *world.blocks, index, world.time, world.step, path);
 }
 
 void Hdf5Writer::append(Output& out, const World& world, const ParticleStore& store, bool with_blocks) {
-  out.series.append([&](hid_t file, std::uint64_t index, const std::string& path) {
-    write_particles(file, index, world, store, out.fields, with_blocks, path);
-  });
-  out.frames.push_back({world.time, static_cast<std::uint64_t>(store.size())});
-  if (out.xdmf_path.empty()) return;
+  const std::uint64_t mine = store.owned_size();
+  h5::Handle transfer;
+  h5::SharedRows shared;
+  if (ranks_) {
+    transfer = h5::collective_transfer(out.series.path());
+    shared = {ranks_->sum(mine), ranks_->sum_before(mine), transfer.get()};
+  }
+  auto rows = [&](hid_t file, std::uint64_t index, const std::string& path) {
+    write_particles(file, index, world, store, out.fields, ranks_ ? &shared : nullptr, path);
+  };
+  // Every rank holds the blocks whole: rank 0 writes them.
+  H5PartSeries::FrameWriter blocks;
+  if (with_blocks && world.blocks && world.blocks->size() > 0)
+    blocks = [&](hid_t file, std::uint64_t index, const std::string& path) {
+      write_block_states(file, *world.blocks, index, world.time, world.step, path);
+    };
+  out.series.append(rows, blocks);
+  out.frames.push_back({world.time, ranks_ ? shared.total : mine});
+  if (out.xdmf_path.empty() || (ranks_ && ranks_->rank() != 0)) return;
   // Rewritten after the HDF5 file it describes is in place: it never lists a
   // frame that file lacks.
   write_whole_file(out.xdmf_path + ".tmp", build_xdmf(base_name(out.series.path()), out.frames, out.fields, single_));

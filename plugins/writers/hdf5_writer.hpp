@@ -3,7 +3,9 @@
 // per vector component, TimeValue per step) that ParaView's H5Part reader
 // opens with its time steps and h5py reads directly. Block states go to
 // Blocks/Step#N. Layout: docs/output-formats.md. The file on disk is always a
-// complete HDF5 file (see h5part_series.hpp).
+// complete HDF5 file (see h5part_series.hpp). On several MPI ranks with
+// parallel HDF5, the ranks write each frame together, each its owned rows in
+// rank order, ids stored.
 #pragma once
 
 #include <array>
@@ -11,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "h5_util.hpp"
 #include "h5part_series.hpp"
 #include "talus/params.hpp"
 #include "talus/particles.hpp"
@@ -29,6 +32,7 @@ class Hdf5Writer final : public Writer {
   void write(const World& world) override;
   void close(const World& world) override;
   std::vector<std::string> files() const override;
+  bool writes_on_every_rank() const override;
 
  private:
   // What the root attributes say about the run, taken in open().
@@ -39,8 +43,9 @@ class Hdf5Writer final : public Writer {
     std::vector<std::string> bodies, materials;
   };
   void write_root(hid_t file, const char* store, const std::string& path) const;
+  // This rank's rows of one frame: `shared` places them among every rank's.
   void write_particles(hid_t file, std::uint64_t index, const World& world, const ParticleStore& store,
-                       const std::vector<FieldInfo>& fields, bool with_blocks, const std::string& path);
+                       const std::vector<FieldInfo>& fields, const h5::SharedRows* shared, const std::string& path);
 
   // One H5Part file and its optional XDMF sidecar.
   struct Output {
@@ -60,6 +65,7 @@ class Hdf5Writer final : public Writer {
   OutputContext context_;
   RunInfo run_;
   Output fluid_, wall_;
+  const Parallel* ranks_ = nullptr;  // several ranks that share the files; null otherwise
   bool have_last_step_ = false;
   std::uint64_t last_step_ = 0;
   std::vector<double> column_;  // one component, reused frame to frame

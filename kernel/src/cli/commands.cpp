@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "plugin_registry.hpp"
+#include "ranks.hpp"
 #include "resource_estimate.hpp"
 #include "scene.hpp"
 #include "scene_schema.hpp"
@@ -266,7 +267,7 @@ int run(const Args& args) {
   options.restart = o.restart;
   options.summary_file = o.summary;
   const int code = simulation.run(options);
-  if (code == 0 && !o.quiet) {
+  if (code == 0 && !o.quiet && ranks::rank() == 0) {
     if (o.positional.empty()) std::printf("\nThis was the default scene, %s.\n", path.c_str());
     for (const auto& file : simulation.output_files())
       if (file.size() > 7 && file.compare(file.size() - 7, 7, ".h5part") == 0) {

@@ -69,6 +69,12 @@ std::uint64_t RankExchange::sum(std::uint64_t local) const {
   return total;
 }
 
+std::uint64_t RankExchange::sum_before(std::uint64_t local) const {
+  std::uint64_t before = 0;
+  MPI_Exscan(&local, &before, 1, MPI_UINT64_T, MPI_SUM, comm_);
+  return rank_ == 0 ? 0 : before;  // MPI leaves rank 0's result undefined
+}
+
 double RankExchange::max(double local) const {
   double out = 0.0;
   MPI_Allreduce(&local, &out, 1, MPI_DOUBLE, MPI_MAX, comm_);

@@ -41,6 +41,8 @@ class TALUS_API RankExchange final : public Parallel {
   std::uint64_t sum(std::uint64_t local) const override;
   double max(double local) const override;
   double min(double local) const override;
+  std::uint64_t sum_before(std::uint64_t local) const override;
+  int communicator() const override { return static_cast<int>(MPI_Comm_c2f(comm_)); }
   void refresh_halo(ParticleStore& store, std::span<const std::string> fields) override;
 
   // For stores that every rank built whole, the same particles in the same

@@ -31,6 +31,16 @@ class TALUS_API Parallel {
   virtual void sum(std::span<double> local) const { (void)local; }
   virtual double max(double local) const { return local; }
   virtual double min(double local) const { return local; }
+  // The sum of `local` over the ranks before this one: where this rank's rows
+  // start in a file the ranks write together in rank order.
+  virtual std::uint64_t sum_before(std::uint64_t local) const {
+    (void)local;
+    return 0;
+  }
+  // The ranks' communicator as MPI's Fortran handle (MPI_Comm_c2f), for an
+  // engine that takes one, such as parallel HDF5; -1 on one rank. An integer
+  // keeps mpi.h out of the SDK.
+  virtual int communicator() const { return -1; }
 
   // Copies the named fields of the store's halo rows from the ranks that own them.
   virtual void refresh_halo(ParticleStore& store, std::span<const std::string> fields) {

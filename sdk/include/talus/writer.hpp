@@ -54,6 +54,11 @@ class TALUS_API Writer : public Model {
   // them; result_names() says before the run which there will be.
   virtual std::vector<std::string> result_names() const { return {}; }
   virtual std::vector<WriterResult> results() const { return {}; }
+  // On several MPI ranks: true when open(), write() and close() run on every
+  // rank, each writing its owned rows (ParticleStore::owned_size()) into the
+  // one file the ranks share. Otherwise the host calls them on rank 0 alone,
+  // which then holds a copy of every particle.
+  virtual bool writes_on_every_rank() const { return false; }
 };
 
 }  // namespace talus
