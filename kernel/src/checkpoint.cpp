@@ -8,113 +8,121 @@
 #include <fstream>
 
 #include "checkpoint_check.hpp"
+#include "checkpoint_format.hpp"
 #include "crc32.hpp"
+#include "ranks.hpp"
 #include "talus/blocks.hpp"
 #include "talus/error.hpp"
 #include "talus/world.hpp"
 
 namespace talus {
 
+namespace checkpoint_format {
+
+std::array<char, header_bytes> header(std::uint64_t payload, std::uint32_t crc) {
+  std::array<char, header_bytes> h{};
+  std::memcpy(h.data(), magic, sizeof magic);
+  h[sizeof magic] = format_version;
+  std::memcpy(h.data() + sizeof magic + 1, &payload, sizeof payload);
+  std::memcpy(h.data() + sizeof magic + 1 + sizeof payload, &crc, sizeof crc);
+  return h;
+}
+
+std::uint64_t In::length(const std::string& what, std::size_t element) {
+  const auto n = pod<std::uint64_t>(what + " length");
+  if (n > left_) fail(what + " claims " + std::to_string(n) + " bytes, only " + std::to_string(left_) + " remain");
+  if (n % element)
+    fail(what + " holds " + std::to_string(n) + " bytes, not a whole number of " + std::to_string(element) +
+         "-byte values");
+  return n;
+}
+
+void In::rows_into(void* data, std::uint64_t first, std::uint64_t count, std::uint64_t rows, std::size_t element,
+                   const std::string& what) {
+  const auto n = length(what, element);
+  if (n != rows * element)
+    fail(what + " holds " + std::to_string(n / element) + " values, expected " + std::to_string(rows));
+  skip(first * element, what);
+  raw(data, count * element, what);
+  skip((rows - first - count) * element, what);
+}
+
+void In::raw(void* p, std::size_t n, const std::string& what) {
+  if (n > left_)
+    fail("truncated: " + what + " needs " + std::to_string(n) + " bytes, only " + std::to_string(left_) + " remain");
+  if (n) s_.read(static_cast<char*>(p), static_cast<std::streamsize>(n));
+  if (!s_) fail("cannot read " + what + ": " + std::strerror(errno));
+  left_ -= n;
+}
+
+void In::skip(std::uint64_t n, const std::string& what) {
+  if (n == 0) return;
+  if (n > left_)
+    fail("truncated: " + what + " needs " + std::to_string(n) + " bytes, only " + std::to_string(left_) + " remain");
+  s_.seekg(static_cast<std::streamoff>(n), std::ios::cur);
+  if (!s_) fail("cannot read " + what + ": " + std::strerror(errno));
+  left_ -= n;
+}
+
+void write_run(Out& out, const World& world, const RunState& state) {
+  out.pod(state.scene_hash);
+  out.pod(world.time);
+  out.pod(world.step);
+  out.pod(world.removed);
+  out.pod(state.last_output_time);
+  out.vec(state.writer_next_time);
+  out.vec(state.writer_next_step);
+  out.pod<std::uint64_t>(state.stage_states.size());
+  for (const auto& st : state.stage_states) out.text(st);
+  out.pod<std::uint64_t>(state.boundary_states.size());
+  for (const auto& st : state.boundary_states) out.text(st);
+}
+
+void write_store_head(Out& out, std::uint64_t rows, std::uint64_t next_id, std::uint32_t fields) {
+  out.pod<std::uint64_t>(rows);
+  out.pod<std::uint64_t>(next_id);
+  out.pod<std::uint32_t>(fields);
+}
+
+void write_column_head(Out& out, const FieldInfo& field, std::uint64_t bytes) {
+  out.text(field.name);
+  out.pod<std::uint8_t>(static_cast<std::uint8_t>(field.type));
+  out.pod<std::uint64_t>(bytes);
+}
+
+void write_blocks(Out& out, const World& world) {
+  const bool blocks = world.blocks != nullptr;
+  out.pod<std::uint8_t>(blocks);
+  if (!blocks) return;
+  const BlockSet& b = *world.blocks;
+  out.vec(b.position);
+  out.vec(b.orientation);
+  out.vec(b.velocity);
+  out.vec(b.angular_velocity);
+  out.vec(b.external_force);
+  out.vec(b.external_torque);
+}
+
+}  // namespace checkpoint_format
+
 namespace {
 
-// Header: magic (7 bytes + the format version as a digit), the payload's
-// length and its CRC-32. The payload follows. Version 2 added the length and
-// the checksum, version 3 the boundary models' state; a file of another
-// version is refused, never guessed at.
-constexpr char magic[7] = {'T', 'A', 'L', 'U', 'S', 'C', 'K'};
-constexpr char format_version = '3';
-constexpr std::size_t header_bytes = sizeof magic + 1 + sizeof(std::uint64_t) + sizeof(std::uint32_t);
-
-class Out {
- public:
-  explicit Out(std::ofstream& s) : s_(s) {}
-  template <class T>
-  void pod(const T& v) { raw(&v, sizeof v); }
-  void bytes(const void* p, std::size_t n) { pod<std::uint64_t>(n); raw(p, n); }
-  void text(const std::string& t) { bytes(t.data(), t.size()); }
-  template <class T>
-  void vec(const std::vector<T>& v) { bytes(v.data(), v.size() * sizeof(T)); }
-  std::uint64_t size() const { return size_; }
-  std::uint32_t crc() const { return crc_; }
-
- private:
-  void raw(const void* p, std::size_t n) {
-    s_.write(static_cast<const char*>(p), static_cast<std::streamsize>(n));
-    crc_ = crc32(p, n, crc_);
-    size_ += n;
-  }
-  std::ofstream& s_;
-  std::uint64_t size_ = 0;
-  std::uint32_t crc_ = 0;
-};
-
-// Reads the payload knowing how many bytes are left, so that no length read
-// from the file can make it allocate more than the file holds.
-class In {
- public:
-  In(std::ifstream& s, const std::string& path, std::uint64_t remaining) : s_(s), path_(path), left_(remaining) {}
-  template <class T>
-  T pod(const std::string& what) {
-    T v{};
-    raw(&v, sizeof v, what);
-    return v;
-  }
-  // A length-prefixed block of whole elements of `element` bytes.
-  std::uint64_t length(const std::string& what, std::size_t element = 1) {
-    const auto n = pod<std::uint64_t>(what + " length");
-    if (n > left_) fail(what + " claims " + std::to_string(n) + " bytes, only " + std::to_string(left_) + " remain");
-    if (n % element) fail(what + " holds " + std::to_string(n) + " bytes, not a whole number of " + std::to_string(element) + "-byte values");
-    return n;
-  }
-  std::string text(const std::string& what) {
-    std::string t(length(what), '\0');
-    raw(t.data(), t.size(), what);
-    return t;
-  }
-  template <class T>
-  std::vector<T> vec(const std::string& what) {
-    std::vector<T> v(length(what, sizeof(T)) / sizeof(T));
-    raw(v.data(), v.size() * sizeof(T), what);
-    return v;
-  }
-  template <class T>
-  void into(T* data, std::size_t count, const std::string& what) {
-    const auto n = length(what, sizeof(T));
-    if (n != count * sizeof(T))
-      fail(what + " holds " + std::to_string(n / sizeof(T)) + " values, expected " + std::to_string(count));
-    raw(data, n, what);
-  }
-  std::uint64_t left() const { return left_; }
-  [[noreturn]] void fail(const std::string& what) const { throw InputError("error: checkpoint " + path_ + ": " + what); }
-
- private:
-  void raw(void* p, std::size_t n, const std::string& what) {
-    if (n > left_) fail("truncated: " + what + " needs " + std::to_string(n) + " bytes, only " + std::to_string(left_) + " remain");
-    if (n) s_.read(static_cast<char*>(p), static_cast<std::streamsize>(n));
-    if (!s_) fail("cannot read " + what + ": " + std::strerror(errno));
-    left_ -= n;
-  }
-  std::ifstream& s_;
-  const std::string& path_;
-  std::uint64_t left_;
-};
+using namespace checkpoint_format;
 
 void save_store(Out& out, const ParticleStore& store) {
-  out.pod<std::uint64_t>(store.size());
-  out.pod<std::uint64_t>(store.next_id());
   const auto fields = store.fields();
-  out.pod<std::uint32_t>(static_cast<std::uint32_t>(fields.size()));
+  write_store_head(out, store.size(), store.next_id(), static_cast<std::uint32_t>(fields.size()));
   for (const auto& f : fields) {
-    out.text(f.name);
-    out.pod<std::uint8_t>(static_cast<std::uint8_t>(f.type));
     const auto column = store.bytes(f.name);
-    out.bytes(column.data(), column.size());
+    write_column_head(out, f, column.size());
+    out.raw(column.data(), column.size());
   }
 }
 
 // The checkpoint holds exactly the fields this scene's stages registered, each
 // once, with its type; the particle count must fit in the bytes that are left.
-void load_store(In& in, ParticleStore& store, const std::string& which) {
+// `share` (rank, ranks): this process keeps rows [n rank / ranks, n (rank + 1) / ranks).
+void load_store(In& in, ParticleStore& store, const std::string& which, std::pair<int, int> share) {
   const auto n = in.pod<std::uint64_t>(which + " particle count");
   const auto next_id = in.pod<std::uint64_t>(which + " next id");
   const auto fields = store.fields();
@@ -130,7 +138,9 @@ void load_store(In& in, ParticleStore& store, const std::string& which) {
   // Resize to n particles (removal keeps the layout; append grows it).
   std::vector<std::uint8_t> drop(store.size(), 1);
   store.remove_if(drop);
-  store.append(n);
+  const std::uint64_t first = n * static_cast<std::uint64_t>(share.first) / static_cast<std::uint64_t>(share.second);
+  const std::uint64_t last = n * static_cast<std::uint64_t>(share.first + 1) / static_cast<std::uint64_t>(share.second);
+  store.append(last - first);
   store.set_next_id(next_id);
   std::vector<std::string> seen;
   for (std::uint32_t k = 0; k < count; ++k) {
@@ -146,17 +156,18 @@ void load_store(In& in, ParticleStore& store, const std::string& which) {
               std::to_string(static_cast<int>(type)));
     const std::string what = which + " field '" + name + "'";
     switch (type) {
-      case FieldType::scalar: { auto s = store.scalar(name); in.into(s.data(), s.size(), what); break; }
-      case FieldType::vector: { auto s = store.vector(name); in.into(s.data(), s.size(), what); break; }
-      case FieldType::integer: { auto s = store.integer(name); in.into(s.data(), s.size(), what); break; }
-      case FieldType::id: { auto s = store.ids(); in.into(s.data(), s.size(), what); break; }
+      case FieldType::scalar: { auto s = store.scalar(name); in.rows_into(s.data(), first, s.size(), n, sizeof s[0], what); break; }
+      case FieldType::vector: { auto s = store.vector(name); in.rows_into(s.data(), first, s.size(), n, sizeof s[0], what); break; }
+      case FieldType::integer: { auto s = store.integer(name); in.rows_into(s.data(), first, s.size(), n, sizeof s[0], what); break; }
+      case FieldType::id: { auto s = store.ids(); in.rows_into(s.data(), first, s.size(), n, sizeof s[0], what); break; }
     }
   }
 }
 
 // Checks the header and the checksum of the whole payload before a byte of
-// it is parsed; returns the payload length.
-std::uint64_t check_header(std::ifstream& s, const std::string& path) {
+// it is parsed; returns the payload length. On several ranks each reads and
+// checksums its part of the payload, and the parts' checksums are combined.
+std::uint64_t check_header(std::ifstream& s, const std::string& path, const ranks::Host* ranks) {
   auto fail = [&](const std::string& what) -> void { throw InputError("error: checkpoint " + path + ": " + what); };
   std::error_code ec;
   const std::uint64_t file_size = std::filesystem::file_size(path, ec);
@@ -175,14 +186,27 @@ std::uint64_t check_header(std::ifstream& s, const std::string& path) {
   if (file_size - header_bytes != payload)
     fail("truncated or extended: the header promises " + std::to_string(payload) + " payload bytes, the file holds " +
          std::to_string(file_size - header_bytes));
+  std::uint64_t from = 0, to = payload;
+  if (ranks) {
+    from = payload * static_cast<std::uint64_t>(ranks->rank()) / static_cast<std::uint64_t>(ranks->ranks());
+    to = payload * static_cast<std::uint64_t>(ranks->rank() + 1) / static_cast<std::uint64_t>(ranks->ranks());
+    s.seekg(static_cast<std::streamoff>(header_bytes + from));
+  }
   std::vector<char> chunk(1 << 20);
   std::uint32_t crc = 0;
-  for (std::uint64_t left = payload; left > 0;) {
+  for (std::uint64_t left = to - from; left > 0;) {
     const std::size_t n = static_cast<std::size_t>(std::min<std::uint64_t>(left, chunk.size()));
     s.read(chunk.data(), static_cast<std::streamsize>(n));
     if (!s) fail(std::string("cannot read the payload: ") + std::strerror(errno));
     crc = crc32(chunk.data(), n, crc);
     left -= n;
+  }
+  if (ranks) {
+    const std::uint64_t mine[2] = {crc, to - from};
+    const std::vector<std::uint64_t> parts = ranks->all_gather(mine);
+    crc = 0;
+    for (std::size_t r = 0; r < parts.size(); r += 2)
+      crc = crc32_combine(crc, static_cast<std::uint32_t>(parts[r]), parts[r + 1]);
   }
   if (crc != stored) {
     char text[96];
@@ -209,42 +233,14 @@ void save_checkpoint(const std::string& path, const World& world, const RunState
   {
     std::ofstream s(tmp, std::ios::binary | std::ios::trunc);
     if (!s) throw RunError("error: cannot write checkpoint " + tmp + ": " + std::strerror(errno));
-    s.write(magic, sizeof magic);
-    s.put(format_version);
-    const std::uint64_t no_length = 0;
-    const std::uint32_t no_crc = 0;
-    s.write(reinterpret_cast<const char*>(&no_length), sizeof no_length);  // filled in below
-    s.write(reinterpret_cast<const char*>(&no_crc), sizeof no_crc);
+    s.write(header(0, 0).data(), header_bytes);  // length and checksum filled in below
     Out out(s);
-    out.pod(state.scene_hash);
-    out.pod(world.time);
-    out.pod(world.step);
-    out.pod(world.removed);
-    out.pod(state.last_output_time);
-    out.vec(state.writer_next_time);
-    out.vec(state.writer_next_step);
-    out.pod<std::uint64_t>(state.stage_states.size());
-    for (const auto& st : state.stage_states) out.text(st);
-    out.pod<std::uint64_t>(state.boundary_states.size());
-    for (const auto& st : state.boundary_states) out.text(st);
+    write_run(out, world, state);
     save_store(out, world.fluid);
     save_store(out, world.boundary);
-    const bool blocks = world.blocks != nullptr;
-    out.pod<std::uint8_t>(blocks);
-    if (blocks) {
-      const BlockSet& b = *world.blocks;
-      out.vec(b.position);
-      out.vec(b.orientation);
-      out.vec(b.velocity);
-      out.vec(b.angular_velocity);
-      out.vec(b.external_force);
-      out.vec(b.external_torque);
-    }
-    const std::uint64_t length = out.size();
-    const std::uint32_t crc = out.crc();
-    s.seekp(static_cast<std::streamoff>(sizeof magic + 1));
-    s.write(reinterpret_cast<const char*>(&length), sizeof length);
-    s.write(reinterpret_cast<const char*>(&crc), sizeof crc);
+    write_blocks(out, world);
+    s.seekp(0);
+    s.write(header(out.size(), out.crc()).data(), header_bytes);
     s.flush();
     if (!s) throw RunError("error: cannot write checkpoint " + tmp + ": " + std::strerror(errno));
   }
@@ -253,10 +249,11 @@ void save_checkpoint(const std::string& path, const World& world, const RunState
   if (ec) throw RunError("error: cannot rename " + tmp + " to " + path + ": " + ec.message());
 }
 
-RunState load_checkpoint(const std::string& path, World& world, std::uint64_t scene_hash) {
+RunState load_checkpoint(const std::string& path, World& world, std::uint64_t scene_hash, const ranks::Host* ranks) {
   std::ifstream s(path, std::ios::binary);
   if (!s) throw InputError("error: checkpoint " + path + ": cannot open it: " + std::strerror(errno));
-  In in(s, path, check_header(s, path));
+  In in(s, path, check_header(s, path, ranks));
+  const std::pair<int, int> share = ranks ? std::pair(ranks->rank(), ranks->ranks()) : std::pair(0, 1);
   RunState state;
   state.scene_hash = in.pod<std::uint64_t>("scene hash");
   if (state.scene_hash != scene_hash)
@@ -275,8 +272,8 @@ RunState load_checkpoint(const std::string& path, World& world, std::uint64_t sc
     in.fail("the boundary model count " + std::to_string(boundaries) + " is impossible");
   for (std::uint64_t k = 0; k < boundaries; ++k)
     state.boundary_states.push_back(in.text("boundary model " + std::to_string(k + 1) + " state"));
-  load_store(in, world.fluid, "fluid");
-  load_store(in, world.boundary, "boundary");
+  load_store(in, world.fluid, "fluid", share);
+  load_store(in, world.boundary, "boundary", share);
   const auto blocks = in.pod<std::uint8_t>("block flag");
   if (blocks > 1) in.fail("the block flag is " + std::to_string(blocks) + ", not 0 or 1");
   if ((blocks != 0) != (world.blocks != nullptr))

@@ -13,6 +13,9 @@
 namespace talus {
 
 class World;
+namespace ranks {
+class Host;
+}
 
 struct RunState {
   std::uint64_t scene_hash = 0;  // the restart must use the same scene text
@@ -24,9 +27,17 @@ struct RunState {
 };
 
 TALUS_API void save_checkpoint(const std::string& path, const World& world, const RunState& state);
+// The same file written by the ranks together (checkpoint_ranks.cpp): each
+// rank its owned rows of every field, in rank order; rank 0 the rest, with
+// `state` and the blocks as it holds them.
+TALUS_API void save_checkpoint_on_ranks(const std::string& path, const World& world, const RunState& state,
+                                        const ranks::Host& ranks);
 // Replaces the world's state with the checkpoint's. Throws InputError naming
-// the file if it is not a checkpoint of this scene.
-TALUS_API RunState load_checkpoint(const std::string& path, World& world, std::uint64_t scene_hash);
+// the file if it is not a checkpoint of this scene. With `ranks`, each rank
+// reads an equal share of the particles (the file may come from any number
+// of ranks) and checksums an equal share of the bytes.
+TALUS_API RunState load_checkpoint(const std::string& path, World& world, std::uint64_t scene_hash,
+                                   const ranks::Host* ranks = nullptr);
 
 TALUS_API std::uint64_t text_hash(const std::string& text);  // FNV-1a, stable across builds
 

@@ -10,6 +10,7 @@
 #include <mpi.h>
 
 #include "mpi/rank_exchange.hpp"
+#include "mpi/shared_file.hpp"
 #endif
 
 namespace talus::ranks {
@@ -53,7 +54,9 @@ class ExchangeHost final : public Host {
   void refresh_halo(ParticleStore& store, std::span<const std::string> fields) override {
     exchange_.refresh_halo(store, fields);
   }
-  void distribute(World& world) override { exchange_.scatter(stores_of(world), kStoreWeights); }
+  void distribute(World& world, bool whole) override {
+    exchange_.scatter(stores_of(world), kStoreWeights, whole);
+  }
   void drop_halos(World& world) override { exchange_.drop_halos(stores_of(world)); }
   void migrate(World& world) override { exchange_.migrate(stores_of(world)); }
   void rebalance(World& world, std::span<const float> cost) override { exchange_.balance(stores_of(world), cost); }
@@ -62,6 +65,12 @@ class ExchangeHost final : public Host {
   void release_gathered(World& world) override { exchange_.release_gathered(stores_of(world)); }
   std::vector<std::string> gather_texts(const std::vector<std::string>& mine) override {
     return exchange_.gather_texts(mine);
+  }
+  std::vector<std::uint64_t> all_gather(std::span<const std::uint64_t> mine) const override {
+    return exchange_.all_gather(mine);
+  }
+  std::unique_ptr<SharedFile> create_shared_file(const std::string& path) const override {
+    return std::make_unique<mpi::SharedFile>(MPI_COMM_WORLD, path);
   }
 
  private:

@@ -3,6 +3,8 @@
 // or a process not started by mpirun, is the single rank 0 of 1.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <string>
@@ -22,12 +24,26 @@ TALUS_API int count();
 // After an error on one rank: stops every rank of the run with this exit code.
 [[noreturn]] TALUS_API void abort_all(int code);
 
+// One file several ranks write together, each its own bytes at its own offsets.
+class SharedFile {
+ public:
+  virtual ~SharedFile() = default;
+  // This rank alone.
+  virtual void write_alone(std::uint64_t offset, std::span<const std::byte> bytes) = 0;
+  // Collective: every rank calls it, each with its own offset and bytes (none too).
+  virtual void write_together(std::uint64_t offset, std::span<const std::byte> bytes) = 0;
+  // Collective; the bytes are in the file once it returns.
+  virtual void close() = 0;
+};
+
 // The host's side of a run on several ranks: World::parallel() for the stages,
 // and the moves between steps.
 class Host : public Parallel {
  public:
   // Keeps this rank's share of the world every rank built whole, and makes the first cuts.
-  virtual void distribute(World& world) = 0;
+  // With `whole` false, each rank already holds a different share (a
+  // checkpoint read in slices): only the cuts are made.
+  virtual void distribute(World& world, bool whole) = 0;
   virtual void drop_halos(World& world) = 0;
   // Moves each particle to the owner of its place.
   virtual void migrate(World& world) = 0;
@@ -40,6 +56,10 @@ class Host : public Parallel {
   virtual void release_gathered(World& world) = 0;
   // Rank 0 gets every rank's texts, in rank order (its own first); the others get none.
   virtual std::vector<std::string> gather_texts(const std::vector<std::string>& mine) = 0;
+  // Every rank gets every rank's values, in rank order (each rank gives as many).
+  virtual std::vector<std::uint64_t> all_gather(std::span<const std::uint64_t> mine) const = 0;
+  // Creates (or empties) `path` for a collective write; collective.
+  virtual std::unique_ptr<SharedFile> create_shared_file(const std::string& path) const = 0;
 };
 
 // halo_reach: the search radius plus the skin particles may move before the

@@ -55,6 +55,7 @@ Simulation::~Simulation() = default;  // here: ranks::Host is complete
 
 int Simulation::run(const RunOptions& options) {
   if (options.threads > 0) omp_set_num_threads(options.threads);
+  start_ranks();
   if (!options.restart.empty()) read_checkpoint(options.restart);
   spread_over_ranks(!options.restart.empty());
   const bool root = ranks::rank() == 0;  // the rank that writes and prints

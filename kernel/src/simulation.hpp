@@ -85,6 +85,9 @@ class TALUS_API Simulation {
   std::size_t flag_escaped_particles();  // wraps periodic axes; returns how many owned particles left the domain
   void remove_flagged_particles();
   // Several MPI ranks (simulation_ranks.cpp): share the world out, keep owners and halos current.
+  // On several ranks: the host of the exchange (before a checkpoint is read,
+  // which each rank reads a share of), then the first cuts.
+  void start_ranks();
   void spread_over_ranks(bool restart);
   // After particles moved between ranks: cache order, halos, the wall models' rows.
   void settle_on_ranks();

@@ -110,18 +110,16 @@ void Simulation::write_checkpoint(const std::string& path) {
     save_checkpoint(path, world_, state);
     return;
   }
-  // On several ranks rank 0 writes the one file a serial run would, from the
-  // gathered copy, with every rank's count of removed particles.
+  // On several ranks they write the one file a serial run would together,
+  // with every rank's count of removed particles.
   const std::uint64_t removed = world_.removed;
   world_.removed = ranks_->sum(removed);
-  gather_for_writers();
-  if (ranks::rank() == 0) save_checkpoint(path, world_, state);
-  release_after_writers();
+  save_checkpoint_on_ranks(path, world_, state, *ranks_);
   world_.removed = removed;
 }
 
 void Simulation::read_checkpoint(const std::string& path) {
-  RunState state = load_checkpoint(path, world_, text_hash(scene_.text));
+  RunState state = load_checkpoint(path, world_, text_hash(scene_.text), ranks_.get());
   const std::vector<Boundary*> boundaries = boundary_models();
   if (state.stage_states.size() != stages_.size())
     throw InputError("error: checkpoint " + path + ": it has the state of " + std::to_string(state.stage_states.size()) +
@@ -162,7 +160,7 @@ void Simulation::read_checkpoint(const std::string& path) {
   last_output_time_ = state.last_output_time;
   // The wall models lay out their rows in the order they made them (ids
   // ascending), as a serial run keeps them; a run on several ranks wrote them
-  // in rank order.
+  // in rank order. (On several ranks this orders each rank's share.)
   const auto ids = world_.boundary.ids();
   if (!std::ranges::is_sorted(ids)) {
     std::vector<Index> order(ids.size());

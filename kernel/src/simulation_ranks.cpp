@@ -53,7 +53,7 @@ std::string unsupported_on_ranks(const World& world) {
 
 }  // namespace
 
-void Simulation::spread_over_ranks(bool restart) {
+void Simulation::start_ranks() {
   if (ranks::count() < 2) return;
   const std::string what = unsupported_on_ranks(world_);
   if (!what.empty())
@@ -71,10 +71,15 @@ void Simulation::spread_over_ranks(bool restart) {
   // the search radius lets RCB's straight cuts share out a small body evenly.
   ranks_ = ranks::make_host(world_, skin_, radius + skin_, partition);
   world_.set_parallel(ranks_.get());
-  // A restart read every particle and the run's count of removed ones on
-  // every rank: rank 0 keeps the count, as each rank counts its own from here.
+}
+
+void Simulation::spread_over_ranks(bool restart) {
+  if (!ranks_) return;
+  // A restart read a share of the particles on each rank, and the run's count
+  // of removed ones on every rank: rank 0 keeps the count, as each rank counts
+  // its own from here.
   if (restart && ranks::rank() != 0) world_.removed = 0;
-  ranks_->distribute(world_);
+  ranks_->distribute(world_, !restart);
   rebuild_ranks();
 }
 

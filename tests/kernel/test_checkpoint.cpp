@@ -12,6 +12,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -163,6 +164,23 @@ TEST(Crc32, MatchesTheStandardCheckValue) {
   EXPECT_EQ(talus::crc32("123456789", 9), 0xCBF43926u);
   EXPECT_EQ(talus::crc32("12345", 5, talus::crc32("", 0)), talus::crc32("12345", 5));
   EXPECT_EQ(talus::crc32("6789", 4, talus::crc32("12345", 5)), 0xCBF43926u);  // incremental
+}
+
+TEST(Crc32, CombinesTheChecksumsOfTwoParts) {
+  EXPECT_EQ(talus::crc32_combine(talus::crc32("12345", 5), talus::crc32("6789", 4), 4), 0xCBF43926u);
+  EXPECT_EQ(talus::crc32_combine(0, talus::crc32("123456789", 9), 9), 0xCBF43926u);  // empty first part
+  EXPECT_EQ(talus::crc32_combine(talus::crc32("123456789", 9), 0, 0), 0xCBF43926u);  // empty second part
+  // Parts of every length from 0 to 3000 bytes of pseudo-random data.
+  std::vector<unsigned char> bytes(3000);
+  std::uint32_t state = 12345;
+  for (auto& b : bytes) b = static_cast<unsigned char>((state = state * 1103515245u + 12345u) >> 16);
+  const std::uint32_t whole = talus::crc32(bytes.data(), bytes.size());
+  for (std::size_t cut = 0; cut <= bytes.size(); cut += 97) {
+    const std::size_t rest = bytes.size() - cut;
+    EXPECT_EQ(talus::crc32_combine(talus::crc32(bytes.data(), cut), talus::crc32(bytes.data() + cut, rest), rest),
+              whole)
+        << "cut at " << cut;
+  }
 }
 
 TEST_F(CheckpointTest, AnIntactCheckpointIsAccepted) {

@@ -94,11 +94,15 @@ Vec3 RankExchange::cell_centre(const Vec3& x) const {
   return c;
 }
 
-void RankExchange::scatter(std::span<ParticleStore* const> stores, std::span<const float> weights) {
+void RankExchange::scatter(std::span<ParticleStore* const> stores, std::span<const float> weights, bool whole) {
   std::vector<float> cost;
   for (std::size_t s = 0; s < stores.size(); ++s) {
     ParticleStore* store = stores[s];
     store->drop_halo();
+    if (!whole) {
+      cost.insert(cost.end(), store->size(), weights[s]);
+      continue;
+    }
     const std::size_t n = store->size();
     const std::size_t first = n * static_cast<std::size_t>(rank_) / nranks();
     const std::size_t last = n * static_cast<std::size_t>(rank_ + 1) / nranks();
@@ -270,6 +274,13 @@ std::vector<std::byte> RankExchange::gather_bytes(std::span<const std::byte> min
   std::vector<std::byte> in(rank_ == 0 ? total : 0);
   MPI_Gatherv(mine.data(), bytes, MPI_BYTE, in.data(), counts.data(), at.data(), MPI_BYTE, 0, comm_);
   return in;
+}
+
+std::vector<std::uint64_t> RankExchange::all_gather(std::span<const std::uint64_t> mine) const {
+  std::vector<std::uint64_t> all(mine.size() * nranks());
+  MPI_Allgather(mine.data(), message_size(mine.size()), MPI_UINT64_T, all.data(), message_size(mine.size()),
+                MPI_UINT64_T, comm_);
+  return all;
 }
 
 std::vector<std::string> RankExchange::gather_texts(const std::vector<std::string>& texts) const {

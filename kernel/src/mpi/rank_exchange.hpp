@@ -45,10 +45,11 @@ class TALUS_API RankExchange final : public Parallel {
   int communicator() const override { return static_cast<int>(MPI_Comm_c2f(comm_)); }
   void refresh_halo(ParticleStore& store, std::span<const std::string> fields) override;
 
-  // For stores that every rank built whole, the same particles in the same
-  // order: keeps this rank's share, then balances. weights: cost of one
+  // For stores that every rank built whole (`whole`), the same particles in
+  // the same order: keeps this rank's share, then balances; otherwise each
+  // rank's share is already its own and is only balanced. weights: cost of one
   // particle of each store.
-  void scatter(std::span<ParticleStore* const> stores, std::span<const float> weights);
+  void scatter(std::span<ParticleStore* const> stores, std::span<const float> weights, bool whole = true);
   // New cuts from the particles' places and costs (one per owned row, the
   // stores' rows in turn); moves every particle to its new owner.
   void balance(std::span<ParticleStore* const> stores, std::span<const float> cost);
@@ -69,6 +70,8 @@ class TALUS_API RankExchange final : public Parallel {
   void release_gathered(std::span<ParticleStore* const> stores);
   // Rank 0 gets every rank's texts, in rank order; the others get none.
   std::vector<std::string> gather_texts(const std::vector<std::string>& texts) const;
+  // Every rank gets every rank's values in rank order; each gives as many.
+  std::vector<std::uint64_t> all_gather(std::span<const std::uint64_t> mine) const;
 
   // The place the cuts see for a particle: the centre of its cell.
   Vec3 cell_centre(const Vec3& x) const;
