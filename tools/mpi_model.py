@@ -6,7 +6,11 @@ the halo volume and the messages a step sends (docs/mpi.md).
          + refreshes * (neighbours * latency + halo * row_bytes / bandwidth)
          + reductions * log2(ranks) * latency                     time step, density check
 
-halo_cost is 1 today: halo rows go through the pair loops like owned rows.
+halo_cost is what a halo row costs relative to an owned one. The pair loops
+run their outer loop over owned rows only and skip the pairs of two halo
+rows, but halo rows are still binned, integrated and refreshed, and the
+walls' own passes still visit them: the default is the value measured on a
+3D dam break on 2 ranks (docs/mpi.md, "Cost model").
 The halo of an interior rank of a cubic grid of ranks is the shell of width
 `reach` (search radius plus skin) around its cube of particles; --halo-share
 replaces it with a measured share (the run summary's ranks/halo_share).
@@ -41,7 +45,7 @@ def main():
     ap.add_argument("--reach-dp", type=float, default=4.0, help="halo width in dp: 2h + skin = 3 dp + dp")
     ap.add_argument("--halo-share", type=float, default=None, help="measured halo rows per owned row")
     ap.add_argument("--neighbours", type=int, default=1, help="ranks exchanged with, with --halo-share")
-    ap.add_argument("--halo-cost", type=float, default=1.0, help="cost of a halo row relative to an owned one")
+    ap.add_argument("--halo-cost", type=float, default=0.33, help="cost of a halo row relative to an owned one")
     ap.add_argument("--row-bytes", type=float, default=192, help="bytes of one particle's fields")
     ap.add_argument("--refreshes", type=float, default=2, help="halo refreshes per step (symplectic: 2)")
     ap.add_argument("--reductions", type=float, default=5, help="all-reduces per step")

@@ -50,7 +50,8 @@ std::uint64_t run_force_pass(const PassContext& ctx, const Terms&... terms) {
   };
   auto finish = [&](Index i) { f.a[i] += g; };
   const sph::FluidReactions out{f.a.data(), f.drho.data(), f.visc.data()};
-  return sph::mutual_pair_pass(ctx.cells, ctx.world.kernel, out, ctx.reactions, start, finish, terms...);
+  return sph::mutual_pair_pass(ctx.cells, ctx.world.kernel, out, ctx.reactions, ctx.world.fluid.owned_size(), start,
+                               finish, terms...);
 }
 
 template <class... Terms>
@@ -109,8 +110,9 @@ void WcsphStage::density_summation(World& world) {
   const std::span<const double> m = f.m;
   auto start = [](Index) { return Sums{}; };
   auto finish = [&](Index i, const Sums& s) { f.rho[i] = s.rho_sum + m[i] * w0; };  // self term W(0)
+  // Owned rows only: the halo's densities come from their owners after the pass.
   const std::span<const Vec3> x = f.x;
-  pairs_total_ += sph::pair_pass(x.size(), x, cells_, world.kernel, sph::same_set, start, finish,
+  pairs_total_ += sph::pair_pass(world.fluid.owned_size(), x, cells_, world.kernel, sph::same_set, start, finish,
                                  sph::DensitySum{m.data()});
   pairs_total_ += wall_density_passes(world);
 }

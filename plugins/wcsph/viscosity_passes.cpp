@@ -99,6 +99,7 @@ std::uint64_t WcsphStage::strain_rate_pass(World& world) {
     return s;
   };
   const std::span<const Vec3> x = f.x;
+  const std::size_t owned = world.fluid.owned_size();  // the halo's rates come from their owners
   if (point_implicit_) {
     visc_support_.resize(x.size());
     double* support = visc_support_.data();
@@ -106,12 +107,11 @@ std::uint64_t WcsphStage::strain_rate_pass(World& world) {
       shear[i] = sph::shear_rate_from_gradient(s.g, s.l, dim);
       support[i] = s.support;
     };
-    return sph::pair_pass(x.size(), x, cells_, world.kernel, sph::same_set, start, finish,
+    return sph::pair_pass(owned, x, cells_, world.kernel, sph::same_set, start, finish,
                           sph::VelocityGradient{nb}, ViscousSupport{nb, sph::laminar_eta2(h_)});
   }
   auto finish = [&](Index i, const StrainSums& s) { shear[i] = sph::shear_rate_from_gradient(s.g, s.l, dim); };
-  return sph::pair_pass(x.size(), x, cells_, world.kernel, sph::same_set, start, finish,
-                        sph::VelocityGradient{nb});
+  return sph::pair_pass(owned, x, cells_, world.kernel, sph::same_set, start, finish, sph::VelocityGradient{nb});
 }
 
 void WcsphStage::apparent_viscosity_pass(World& world) {

@@ -43,7 +43,10 @@ struct WallPass {
   const double* material_mu;  // where the fluid has no mu_eff
   bool continuity;
   Vec3 period;
-  std::size_t owned;  // the fluid's own rows: halo rows' reaction is their owner's
+  // The fluid's own rows: the outer loops stop there, as the halo rows' rates
+  // are not wanted (their values come from their owners) and their reaction
+  // on a body is their owner's.
+  std::size_t owned;
 
   template <class S>
   S start(Index i) const {
@@ -66,8 +69,7 @@ struct WallPass {
   std::uint64_t against_walls(const Terms&... terms) const {
     auto first = [&](Index i) { return start<FluidSums>(i); };
     auto finish = [&](Index i, const FluidSums& s) { add_rates(i, s); };
-    return sph::pair_pass(fluid.position.size(), fluid.position, *set.cells, kernel, sph::other_set,
-                          first, finish, terms...);
+    return sph::pair_pass(owned, fluid.position, *set.cells, kernel, sph::other_set, first, finish, terms...);
   }
 
   template <class... Terms>
@@ -83,13 +85,12 @@ struct WallPass {
     auto first = [&](Index i) { return start<BodySums>(i); };
     auto finish = [&](Index i, const BodySums& s, BodyReaction& on_body) {
       add_rates(i, s);
-      if (i >= owned) return;
       const double mi = fluid.mass[i];
       const Vec3 force = s.acc * (-mi);
       on_body.force += force;
       on_body.torque += cross(arm_of(i), force) + s.moment * mi;
     };
-    return sph::reducing_pair_pass<BodyReaction>(fluid.position.size(), fluid.position, *set.cells, kernel,
+    return sph::reducing_pair_pass<BodyReaction>(owned, fluid.position, *set.cells, kernel,
                                                  sph::other_set, pairs, skip, first, finish,
                                                  sph::with_pair_moment(terms...));
   }
@@ -145,7 +146,7 @@ std::uint64_t WcsphStage::wall_density_passes(World& world) {
     for (const sph::WallSet& set : wall->wall_sets()) {
       auto start = [](Index) { return sph::DensitySums{}; };
       auto finish = [&](Index i, const sph::DensitySums& sum) { f.rho[i] += sum.rho_sum; };
-      pairs += sph::pair_pass(x.size(), x, *set.cells, world.kernel, sph::other_set, start, finish,
+      pairs += sph::pair_pass(world.fluid.owned_size(), x, *set.cells, world.kernel, sph::other_set, start, finish,
                               sph::DensitySum{set.fields.mass});
     }
   }

@@ -4,10 +4,12 @@
 // 2D and 3D, on one and two threads; and bit-for-bit the same result when a
 // run is repeated at a given thread count.
 #include <gtest/gtest.h>
+
 #include <omp.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <random>
 #include <vector>
@@ -113,14 +115,18 @@ Rates gather(const Cloud& c, const NeighbourGrid& grid, const KernelTable& kerne
   return r;
 }
 
+// Rows from `owned` on play another MPI rank's halo copies.
 template <class Term>
-Rates mutual(const Cloud& c, const NeighbourGrid& grid, const KernelTable& kernel, const Term& term) {
+Rates mutual(const Cloud& c, const NeighbourGrid& grid, const KernelTable& kernel, const Term& term,
+             std::size_t owned = SIZE_MAX, std::uint64_t* pairs = nullptr) {
   Rates r{std::vector<Vec3>(c.x.size(), Vec3{9, 9, 9}), std::vector<double>(c.x.size(), 9.0),
           std::vector<double>(c.x.size(), 9.0)};  // not zero: the pass must clear its output
   sph::ReactionBuffers buffers;
   auto start = [&](Index i) { return start_of(c, i); };
-  sph::mutual_pair_pass(grid, kernel, {r.acc.data(), r.drho.data(), r.visc.data()}, buffers, start, [](Index) {},
-                        term);
+  const std::uint64_t counted =
+      sph::mutual_pair_pass(grid, kernel, {r.acc.data(), r.drho.data(), r.visc.data()}, buffers,
+                            std::min(owned, c.x.size()), start, [](Index) {}, term);
+  if (pairs) *pairs = counted;
   return r;
 }
 
@@ -246,11 +252,11 @@ TEST_P(MutualPass, CountsEveryPairFromBothSidesAndRepeatsBitForBit) {
     Rates r{std::vector<Vec3>(cloud.x.size()), std::vector<double>(cloud.x.size()),
             std::vector<double>(cloud.x.size())};
     sph::ReactionBuffers buffers;
-    first = sph::mutual_pair_pass(grid, kernel, {r.acc.data(), r.drho.data(), r.visc.data()}, buffers, start,
-                                  [](Index) {}, pressure, viscosity, continuity);
+    first = sph::mutual_pair_pass(grid, kernel, {r.acc.data(), r.drho.data(), r.visc.data()}, buffers,
+                                  cloud.x.size(), start, [](Index) {}, pressure, viscosity, continuity);
     a = r;
-    second = sph::mutual_pair_pass(grid, kernel, {r.acc.data(), r.drho.data(), r.visc.data()}, buffers, start,
-                                   [](Index) {}, pressure, viscosity, continuity);
+    second = sph::mutual_pair_pass(grid, kernel, {r.acc.data(), r.drho.data(), r.visc.data()}, buffers,
+                                   cloud.x.size(), start, [](Index) {}, pressure, viscosity, continuity);
     b = r;
   }
   EXPECT_EQ(first, gathered);
@@ -260,6 +266,24 @@ TEST_P(MutualPass, CountsEveryPairFromBothSidesAndRepeatsBitForBit) {
     ASSERT_EQ(a.drho[i], b.drho[i]) << i;
     ASSERT_EQ(a.visc[i], b.visc[i]) << i;
   }
+}
+
+// On several MPI ranks the last rows are halo copies, whose rates are not
+// wanted: the pass skips the pairs of two of them. The owned rows' rates are
+// those of the whole pass bit for bit (every pair with an owned row is still
+// evaluated, in the same order), and fewer pairs are counted.
+TEST_P(MutualPass, SkipsPairsOfTwoHaloCopiesAndKeepsTheOwnedRates) {
+  const sph::PressureForce pressure{cloud.nb()};
+  std::uint64_t all_pairs = 0, owned_pairs = 0;
+  const Rates whole = mutual(cloud, grid, kernel, pressure, SIZE_MAX, &all_pairs);
+  const std::size_t owned = 2 * cloud.x.size() / 3;
+  const Rates part = mutual(cloud, grid, kernel, pressure, owned, &owned_pairs);
+  for (std::size_t i = 0; i < owned; ++i) {
+    ASSERT_EQ(part.acc[i], whole.acc[i]) << i;
+    ASSERT_EQ(part.drho[i], whole.drho[i]) << i;
+  }
+  EXPECT_LT(owned_pairs, all_pairs);
+  EXPECT_GT(owned_pairs, all_pairs / 2);
 }
 
 INSTANTIATE_TEST_SUITE_P(Layouts, MutualPass,

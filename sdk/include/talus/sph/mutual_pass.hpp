@@ -91,11 +91,15 @@ class ReactionBuffers {
 // Runs the mutual pass over every point binned in `cells` (set A = set B).
 // start(i) -> Sums (with acc, drho, visc zero), every term's mutual() per
 // pair, then out = the sum over pairs for every particle, and finish(i) once
-// out holds particle i's total. Returns the number of particle-neighbour
-// evaluations (twice the pairs), as a gather pass would count them.
+// out holds particle i's total. Points from `owned` on are halo copies of
+// another MPI rank's particles (talus/parallel.hpp): their totals are not
+// wanted, so pairs of two of them are skipped, and only their pairs with
+// owned points count. Returns the number of particle-neighbour evaluations
+// (twice the pairs), as a gather pass would count them.
 template <class Start, class Finish, class... Terms>
 std::uint64_t mutual_pair_pass(const NeighbourGrid& cells, const KernelTable& kernel, FluidReactions out,
-                               ReactionBuffers& buffers, Start&& start, Finish&& finish, const Terms&... terms) {
+                               ReactionBuffers& buffers, std::size_t owned, Start&& start, Finish&& finish,
+                               const Terms&... terms) {
   constexpr bool need_value = (Terms::uses_value || ...);
   constexpr bool need_gradient = (Terms::uses_gradient || ...);
   const std::span<const Index> order = cells.order();
@@ -119,8 +123,12 @@ std::uint64_t mutual_pair_pass(const NeighbourGrid& cells, const KernelTable& ke
       const Index i = order[slot];
       auto sums = start(i);
       std::uint64_t count = 0;
+      const bool halo_i = i >= owned;
+      // One traversal for both kinds of i (not two inlined copies, whose
+      // floating-point code could differ): the owned rates stay bit for bit.
       cells.for_each_later_neighbour(slot, radius, [&](Index j, const Vec3& dx, double r2)
                                                        __attribute__((always_inline)) {
+        if (halo_i && j >= owned) return;
         Pair p;
         p.j = j;
         p.dx = dx;

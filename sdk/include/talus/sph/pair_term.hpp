@@ -48,11 +48,14 @@ class TALUS_API PairTerm : public Model {
 };
 
 // The term's pass: particle i of the fluid against its fluid neighbours j != i,
-// start(i) -> Sums, terms' pair(p, sums) per neighbour, finish(i, sums).
+// start(i) -> Sums, terms' pair(p, sums) per neighbour, finish(i, sums). On
+// several MPI ranks i runs over this rank's own particles only: the halo
+// copies' rates are not wanted (their state comes from their owners).
 template <class Start, class Finish, class... Terms>
 std::uint64_t fluid_pass(const PairTermInput& in, Start&& start, Finish&& finish, const Terms&... terms) {
   const std::span<const Vec3> x = in.fluid.position;
-  return pair_pass(x.size(), x, *in.fluid.cells, in.world.kernel, same_set, start, finish, terms...);
+  return pair_pass(in.world.fluid.owned_size(), x, *in.fluid.cells, in.world.kernel, same_set, start, finish,
+                   terms...);
 }
 
 }  // namespace talus::sph
