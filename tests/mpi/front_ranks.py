@@ -1,0 +1,98 @@
+#!/usr/bin/env python3
+"""A front history on several MPI ranks against the serial run's, to the end
+of the run: the scene's copy runs to its end time (its max_steps dropped, or
+to --end) with a frame every --every seconds, and at every frame the front
+(the largest coordinate of a fluid particle along --axis) on each rank count
+must be within --rel-tol of the serial front. With blocks, so must each
+block's distance from where it started (to 1e-9 m for blocks that stay put).
+Round-off differences grow over thousands of steps; the front and a block's
+travel, integrals of the flow, must not move with them.
+
+usage: front_ranks.py TALUS SCENE OUTDIR --ranks 2 3 4 [--every S] [--end S] [--axis 0|1|2] [--rel-tol R]
+"""
+import argparse
+import json
+import os
+import sys
+
+import h5py
+import numpy as np
+
+from compare_ranks import mpirun, run
+
+
+def fronts(path, axis):
+    """(step, time, front, block travels) of every frame."""
+    out = []
+    with h5py.File(path, "r") as f:
+        steps = sorted((k for k in f.keys() if k.startswith("Step#")), key=lambda k: int(k.split("#")[1]))
+        start = None
+        for k in steps:
+            g = f[k]
+            travel = np.zeros(0)
+            if "Blocks" in f and k in f["Blocks"]:
+                at = f["Blocks"][k]["position"][()]
+                start = at if start is None else start
+                travel = np.linalg.norm(at - start, axis=1)
+            front = float(np.max(g["xyz"[axis]][()]))
+            out.append((int(g.attrs["step"][0]), float(g.attrs["TimeValue"][0]), front, travel))
+    return out
+
+
+def largest_difference(ref, got, rel_tol):
+    """The frame where the front or a block's travel is nearest its bound, and that share of it."""
+    worst = (0.0, 0, "front")
+    for k, (r, g) in enumerate(zip(ref, got)):
+        worst = max(worst, (abs(g[2] - r[2]) / (rel_tol * abs(r[2])), k, "front"))
+        for b in range(len(r[3])):
+            bound = max(rel_tol * r[3][b], 1e-9)
+            worst = max(worst, (abs(g[3][b] - r[3][b]) / bound, k, f"block {b}'s travel"))
+    return worst
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("talus")
+    ap.add_argument("scene")
+    ap.add_argument("outdir")
+    ap.add_argument("--ranks", type=int, nargs="+", default=[2, 3, 4])
+    ap.add_argument("--every", type=float, default=0.01)
+    ap.add_argument("--end", type=float, default=None, help="end time, s (default: the scene's)")
+    ap.add_argument("--axis", type=int, default=0, choices=(0, 1, 2))
+    ap.add_argument("--rel-tol", type=float, default=1e-3)
+    a = ap.parse_args()
+    name = os.path.splitext(os.path.basename(a.scene))[0]
+    with open(a.scene) as f:
+        scene = json.load(f)
+    scene["time"].pop("max_steps", None)
+    if a.end is not None:
+        scene["time"]["end"] = a.end
+    scene["outputs"] = [{"type": "hdf5", "every": a.every, "fields": ["id"]}]
+    os.makedirs(a.outdir, exist_ok=True)
+    scene_copy = os.path.join(a.outdir, name + ".json")
+    with open(scene_copy, "w") as f:
+        json.dump(scene, f, indent=1)
+    serial_out = os.path.join(a.outdir, "serial")
+    run([a.talus, "run", scene_copy], serial_out)
+    ref = fronts(os.path.join(serial_out, name + ".h5part"), a.axis)
+    failed = False
+    for n in a.ranks:
+        out = os.path.join(a.outdir, f"ranks{n}")
+        run(mpirun(n) + [a.talus, "run", scene_copy], out)
+        got = fronts(os.path.join(out, name + ".h5part"), a.axis)
+        if [s for s, *_ in got] != [s for s, *_ in ref]:
+            print(f"{n} ranks: frames at steps {[s for s, *_ in got]}, serially {[s for s, *_ in ref]}: FAIL")
+            failed = True
+            continue
+        share, k, what = largest_difference(ref, got, a.rel_tol)
+        ok = share <= 1.0
+        travel = f", blocks travel up to {max(ref[-1][3]):.4f} m" if len(ref[-1][3]) else ""
+        print(f"{n} ranks: {len(ref)} frames to t = {ref[-1][1]:.4f} s (step {ref[-1][0]}), front "
+              f"{ref[0][2]:.4f} -> {ref[-1][2]:.4f} m{travel}; nearest its bound: {what} at t = {ref[k][1]:.4f} s, "
+              f"{share:.2e} of it: {'ok' if ok else 'FAIL'}")
+        failed |= not ok
+    sys.exit(1 if failed else 0)
+
+
+if __name__ == "__main__":
+    main()
