@@ -45,7 +45,7 @@ def main():
     ap.add_argument("--reach-dp", type=float, default=4.0, help="halo width in dp: 2h + skin = 3 dp + dp")
     ap.add_argument("--halo-share", type=float, default=None, help="measured halo rows per owned row")
     ap.add_argument("--neighbours", type=int, default=1, help="ranks exchanged with, with --halo-share")
-    ap.add_argument("--halo-cost", type=float, default=0.33, help="cost of a halo row relative to an owned one")
+    ap.add_argument("--halo-cost", type=float, default=0.2, help="cost of a halo row relative to an owned one")
     ap.add_argument("--row-bytes", type=float, default=192, help="bytes of one particle's fields")
     ap.add_argument("--refreshes", type=float, default=2, help="halo refreshes per step (symplectic: 2)")
     ap.add_argument("--reductions", type=float, default=5, help="all-reduces per step")

@@ -380,7 +380,12 @@ std::uint64_t DynamicParticles::fill_from_ghost_nodes(World& world, const sph::F
   return pairs;
 }
 
-// DBC: the wall particles' continuity rates.
+std::size_t DynamicParticles::owned_count(const World& world) const {
+  const std::size_t owned = world.boundary.owned_size();
+  return owned > first_ ? std::min(count_, owned - first_) : 0;
+}
+
+// DBC: the wall particles' continuity rates (for the ones this rank owns).
 std::uint64_t DynamicParticles::fill_continuity(World& world, const sph::FluidView& fluid) {
   WallFields w(world.boundary, first_, count_);
   // 1/rho from the current density (also right after a restart, which loads the density only).
@@ -401,15 +406,15 @@ std::uint64_t DynamicParticles::fill_continuity(World& world, const sph::FluidVi
   const KernelTable& kernel = *settings_.kernel;
   const sph::Continuity continuity{fluid.neighbours()};
   std::uint64_t pairs = 0;
+  const std::size_t owned = owned_count(world);
   if (mirror_) {
-    pairs = sph::pair_pass(count_, wx, *fluid.cells, kernel, sph::other_set, start, finish_mirror,
+    pairs = sph::pair_pass(owned, wx, *fluid.cells, kernel, sph::other_set, start, finish_mirror,
                            continuity, VelocityShepard{fluid.velocity.data()});
-    // A halo copy sees only part of its fluid here: its owner's value replaces it.
+    // The halo copies were skipped: their values come from their owners.
     static const std::string fields[] = {wall_viscous_velocity.name};
     world.parallel().refresh_halo(world.boundary, fields);
   } else {
-    pairs = sph::pair_pass(count_, wx, *fluid.cells, kernel, sph::other_set, start, finish,
-                           continuity);
+    pairs = sph::pair_pass(owned, wx, *fluid.cells, kernel, sph::other_set, start, finish, continuity);
   }
   return pairs;
 }

@@ -89,6 +89,9 @@ class DynamicParticles final : public sph::SphBoundary {
   std::span<Vec3> viscous_velocity(World& world) const;  // v_b* of my particles (empty without mirror_)
   void place_ghosts(World& world, double time);  // ghost_ at the walls' prescribed positions
   std::uint64_t fill_continuity(World& world, const sph::FluidView& fluid);
+  // My particles this rank owns: the first of mine (on several MPI ranks the
+  // rest are halo copies, whose rates are not wanted); all of them on one rank.
+  std::size_t owned_count(const World& world) const;
   std::uint64_t fill_from_ghost_nodes(World& world, const sph::FluidView& fluid);
 
   std::vector<int> bodies_;
