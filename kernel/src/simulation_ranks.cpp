@@ -59,7 +59,10 @@ void Simulation::start_ranks() {
   if (!what.empty())
     throw InputError("error: " + scene_.path + ": " + what + " do not run on several MPI ranks yet (" +
                      std::to_string(ranks::count()) + " were started); run this scene on one process");
+  // The halo: one search radius, what a boundary model reads beyond it, and the skin.
   const double radius = world_.kernel.support_radius();
+  double beyond = 0.0;
+  for (const Boundary* model : boundary_models()) beyond = std::max(beyond, model->reach_beyond_radius());
   skin_ = world_.dp;
   std::string partition = "RCB";
   if (scene_.values.has("ranks")) {
@@ -69,7 +72,7 @@ void Simulation::start_ranks() {
   }
   // Cells of one spacing: the cuts never split one, and a finer grain than
   // the search radius lets RCB's straight cuts share out a small body evenly.
-  ranks_ = ranks::make_host(world_, skin_, radius + skin_, partition);
+  ranks_ = ranks::make_host(world_, skin_, radius + beyond + skin_, partition);
   world_.set_parallel(ranks_.get());
 }
 

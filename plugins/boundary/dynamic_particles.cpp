@@ -161,8 +161,6 @@ void DynamicParticles::setup(World& world, std::span<const int> bodies) {
     auto bid = s.body();
     const auto surface = wall_surface(v.alternative("shape"), v.alternative_values("shape"), world.dim, world.lo,
                                       world.hi);
-    if (method_ == Method::mdbc)
-      for (const Vec3& p : points) ghost0_.push_back(surface(p) * 2.0 - p);
     for (std::size_t k = 0; k < points.size(); ++k) {
       const std::size_t i = first + k;
       x[i] = x0[i] = points[k];
@@ -191,10 +189,7 @@ void DynamicParticles::bind(World& world, const sph::FluidSettings& settings) {
   mirror_ = slip_ == sph::WallSlip::free_slip || (no_slip_ == NoSlip::extrapolated && settings.viscous_velocity);
   if (mirror_) world.boundary.require(wall_viscous_velocity);
   WallFields w(world.boundary, first_, count_);
-  if (method_ == Method::mdbc) {
-    ghost_ = ghost0_;
-    place_ghosts(world, world.time);
-  }
+  find_ghosts(world);
   rho0_of_material_.assign(world.materials.size(), 0.0);
   for (std::size_t m = 0; m < world.materials.size(); ++m) rho0_of_material_[m] = world.materials[m].density;
   // Moving walls start with their prescribed velocity (an impulsively started lid moves from the first step).
@@ -226,13 +221,8 @@ void DynamicParticles::lay_out(World& world) {
 
 // DBC needs only the fluid within one support radius of each wall particle,
 // which the halo holds. mDBC's ghost nodes lie up to two wall depths inside
-// the fluid, and their own neighbours one radius further: beyond the halo.
-std::string DynamicParticles::why_not_on_ranks() const {
-  if (method_ == Method::mdbc)
-    return "\"method\": \"mdbc\" needs the fluid around ghost nodes up to three support radii from their wall "
-           "particle, beyond the halo of one radius";
-  return {};
-}
+// the fluid: reach_beyond_radius() widens the halo by that much.
+std::string DynamicParticles::why_not_on_ranks() const { return {}; }
 
 // On several ranks this model holds every wall particle of the store, which
 // the host lays out as one range of rows (owned, then halo) beside the block
@@ -253,6 +243,7 @@ void DynamicParticles::rows_moved(World& world) {
                      "; on several MPI ranks one dynamic_particles model must hold every wall particle, in one range");
   first_ = first;
   count_ = end - first;
+  find_ghosts(world);
   lay_out(world);
 }
 
@@ -357,6 +348,19 @@ std::uint64_t DynamicParticles::fill_wall_state(World& world, const sph::FluidVi
   return pairs;
 }
 
+void DynamicParticles::find_ghosts(World& world) {
+  if (method_ != Method::mdbc) return;
+  WallFields w(world.boundary, first_, count_);
+  ghost0_.resize(count_);
+  for (std::size_t b = 0; b < count_; ++b) {
+    const Vec3& p = w.x0[b];
+    ghost0_[b] = surface_[slot_of_body_[w.body[b]]](p) * 2.0 - p;
+    ghost_reach_ = std::max(ghost_reach_, norm(ghost0_[b] - p));
+  }
+  ghost_ = ghost0_;
+  place_ghosts(world, world.time);
+}
+
 void DynamicParticles::place_ghosts(World& world, double time) {
   if (!moves_ || method_ != Method::mdbc) return;
   WallFields w(world.boundary, first_, count_);
@@ -365,10 +369,16 @@ void DynamicParticles::place_ghosts(World& world, double time) {
 }
 
 // mDBC: density (then pressure) and the viscous velocity from the ghost nodes.
+// On several ranks for the particles this rank owns; the halo copies' values
+// come from their owners after it.
 std::uint64_t DynamicParticles::fill_from_ghost_nodes(World& world, const sph::FluidView& fluid) {
   WallFields w(world.boundary, first_, count_);
-  const std::uint64_t pairs = sph::extrapolate_from_ghost_nodes(world.dim, {w.x, ghost_, w.v}, fluid,
-                                                                *settings_.kernel, slip_, w.p, viscous_velocity(world));
+  const std::size_t owned = owned_count(world);
+  const std::span<const Vec3> x = w.x, v = w.v, ghosts = ghost_;
+  const std::span<Vec3> viscous = viscous_velocity(world);
+  const std::uint64_t pairs = sph::extrapolate_from_ghost_nodes(
+      world.dim, {x.first(owned), ghosts.first(owned), v.first(owned)}, fluid, *settings_.kernel, slip_,
+      w.p.first(owned), viscous.empty() ? viscous : viscous.first(owned));
   // The wall density from its material's EOS, never below rho0 (as DBC: a wall never pulls the fluid).
   inv_rho_.resize(count_);
   for (std::size_t b = 0; b < count_; ++b) {
@@ -377,6 +387,12 @@ std::uint64_t DynamicParticles::fill_from_ghost_nodes(World& world, const sph::F
     inv_rho_[b] = 1.0 / w.rho[b];
   }
   update_pressure(world);
+  if (world.parallel().ranks() > 1) {
+    static const std::string values[] = {wall_density.name, wall_pressure.name, wall_sound_speed.name,
+                                         wall_viscous_velocity.name};
+    world.parallel().refresh_halo(world.boundary, std::span(values).first(viscous.empty() ? 3 : 4));
+    for (std::size_t b = owned; b < count_; ++b) inv_rho_[b] = 1.0 / w.rho[b];
+  }
   return pairs;
 }
 

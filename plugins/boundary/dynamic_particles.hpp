@@ -66,6 +66,7 @@ class DynamicParticles final : public sph::SphBoundary {
 
   void setup(World& world, std::span<const int> bodies) override;
   std::string why_not_on_ranks() const override;
+  double reach_beyond_radius() const override { return ghost_reach_; }
   void rows_moved(World& world) override;
   void bind(World& world, const sph::FluidSettings& settings) override;
   void begin_step(World& world) override;
@@ -87,6 +88,9 @@ class DynamicParticles final : public sph::SphBoundary {
   void refresh_set(World& world);  // set_ at the store's current arrays
   void lay_out(World& world);      // what depends on where my particles sit in the store
   std::span<Vec3> viscous_velocity(World& world) const;  // v_b* of my particles (empty without mirror_)
+  // mDBC: each of my particles' ghost node at t = 0 (mirrored through its
+  // wall's surface from its position0), then where the wall's motion has it.
+  void find_ghosts(World& world);
   void place_ghosts(World& world, double time);  // ghost_ at the walls' prescribed positions
   std::uint64_t fill_continuity(World& world, const sph::FluidView& fluid);
   // My particles this rank owns: the first of mine (on several MPI ranks the
@@ -117,6 +121,7 @@ class DynamicParticles final : public sph::SphBoundary {
   // viscous term that uses it (laminar, Laplacian).
   bool mirror_ = false;
   std::vector<Vec3> ghost0_, ghost_;  // mDBC ghost nodes of my wall particles at t = 0 and now
+  double ghost_reach_ = 0.0;          // mDBC: the farthest a ghost node lies from its wall particle
   sph::WallSet set_;              // all my wall particles, one set
 };
 

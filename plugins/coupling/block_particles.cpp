@@ -233,8 +233,8 @@ void BlockParticles::bind(World& world, const sph::FluidSettings& settings) {
 // on every rank with the same forces).
 std::string BlockParticles::why_not_on_ranks() const {
   if (mdbc_)
-    return "\"method\": \"mdbc\" needs the fluid around ghost nodes up to three support radii from their block "
-           "particle, beyond the halo of one radius";
+    return "\"method\": \"mdbc\" for blocks (ghost nodes that move with their block, outside the store) is not "
+           "written for several MPI ranks yet (mDBC walls are)";
   return {};
 }
 

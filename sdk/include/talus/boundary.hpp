@@ -29,6 +29,10 @@ class TALUS_API Boundary : public Model {
   // model that keeps nothing per wall particle outside the store need only
   // return "".
   virtual std::string why_not_on_ranks() const { return "its plugin does not say that it runs on several MPI ranks"; }
+  // How far beyond one search radius of its own particles the model reads the
+  // fluid (mDBC's ghost nodes lie inside the fluid), m: every rank's halo is
+  // widened by the largest such reach. It must be the same on every rank.
+  virtual double reach_beyond_radius() const { return 0.0; }
   // After the host moved rows of world.boundary between ranks and rebuilt the
   // halo rows behind the owned ones: row ranges and per-particle state kept
   // outside the store are stale and are rebuilt here from the store's fields.
