@@ -55,6 +55,19 @@ def run(cmd, out):
         sys.exit(f"FAIL: {' '.join(cmd)} exited {result.returncode}\n{result.stdout}\n{result.stderr}")
 
 
+def edited_copy(scene_path, outdir, edit):
+    """Writes the scene with edit(scene) applied to OUTDIR/NAME.json and returns
+    its path; the scene must then name no file relative to itself."""
+    with open(scene_path) as f:
+        scene = json.load(f)
+    edit(scene)
+    os.makedirs(outdir, exist_ok=True)
+    path = os.path.join(outdir, os.path.basename(scene_path))
+    with open(path, "w") as f:
+        json.dump(scene, f, indent=1)
+    return path
+
+
 def mpirun(n):
     return [os.environ.get("TALUS_MPIEXEC", "mpirun"), "-np", str(n), "--oversubscribe"]
 
@@ -106,13 +119,7 @@ def main():
     a = ap.parse_args()
     name = os.path.splitext(os.path.basename(a.scene))[0]
     if a.ranks_settings is not None:
-        with open(a.scene) as f:
-            scene = json.load(f)
-        scene["ranks"] = json.loads(a.ranks_settings)
-        os.makedirs(a.outdir, exist_ok=True)
-        a.scene = os.path.join(a.outdir, name + ".json")
-        with open(a.scene, "w") as f:
-            json.dump(scene, f, indent=1)
+        a.scene = edited_copy(a.scene, a.outdir, lambda scene: scene.update(ranks=json.loads(a.ranks_settings)))
     serial_out = os.path.join(a.outdir, "serial")
     run([a.talus, "run", a.scene], serial_out)
     step0, ref = last_step(os.path.join(serial_out, name + ".h5part"))

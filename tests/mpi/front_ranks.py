@@ -14,14 +14,13 @@ travel, integrals of the flow, must not move with them.
 usage: front_ranks.py TALUS SCENE OUTDIR --ranks 2 3 4 [--every-steps N] [--end S] [--axis 0|1|2] [--rel-tol R]
 """
 import argparse
-import json
 import os
 import sys
 
 import h5py
 import numpy as np
 
-from compare_ranks import mpirun, run
+from compare_ranks import edited_copy, mpirun, run
 
 
 def fronts(path, axis):
@@ -65,16 +64,13 @@ def main():
     ap.add_argument("--rel-tol", type=float, default=1e-3)
     a = ap.parse_args()
     name = os.path.splitext(os.path.basename(a.scene))[0]
-    with open(a.scene) as f:
-        scene = json.load(f)
-    scene["time"].pop("max_steps", None)
-    if a.end is not None:
-        scene["time"]["end"] = a.end
-    scene["outputs"] = [{"type": "hdf5", "every_steps": a.every_steps, "fields": ["id"]}]
-    os.makedirs(a.outdir, exist_ok=True)
-    scene_copy = os.path.join(a.outdir, name + ".json")
-    with open(scene_copy, "w") as f:
-        json.dump(scene, f, indent=1)
+    def edit(scene):
+        scene["time"].pop("max_steps", None)
+        if a.end is not None:
+            scene["time"]["end"] = a.end
+        scene["outputs"] = [{"type": "hdf5", "every_steps": a.every_steps, "fields": ["id"]}]
+
+    scene_copy = edited_copy(a.scene, a.outdir, edit)
     serial_out = os.path.join(a.outdir, "serial")
     run([a.talus, "run", scene_copy], serial_out)
     ref = fronts(os.path.join(serial_out, name + ".h5part"), a.axis)

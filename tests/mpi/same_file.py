@@ -12,14 +12,13 @@ ranks theirs in rank order, so only the row order may differ.
 usage: same_file.py TALUS SCENE OUTDIR --ranks 2 3 [--rel-tol R] [--abs-tol A]
 """
 import argparse
-import json
 import os
 import sys
 
 import h5py
 import numpy as np
 
-from compare_ranks import mpirun, run
+from compare_ranks import edited_copy, mpirun, run
 
 
 def attributes_differ(ref, got, tol):
@@ -108,15 +107,12 @@ def main():
     a = ap.parse_args()
     tol = lambda scale: max(a.rel_tol * scale, a.abs_tol)
     name = os.path.splitext(os.path.basename(a.scene))[0]
-    with open(a.scene) as f:
-        scene = json.load(f)
-    for out in scene["outputs"]:
-        if out["type"] == "hdf5":
-            out["boundary"] = True
-    os.makedirs(a.outdir, exist_ok=True)
-    scene_copy = os.path.join(a.outdir, name + ".json")
-    with open(scene_copy, "w") as f:
-        json.dump(scene, f, indent=1)
+    def with_wall_files(scene):
+        for out in scene["outputs"]:
+            if out["type"] == "hdf5":
+                out["boundary"] = True
+
+    scene_copy = edited_copy(a.scene, a.outdir, with_wall_files)
     serial = os.path.join(a.outdir, "serial")
     run([a.talus, "run", scene_copy], serial)
     failed = False
