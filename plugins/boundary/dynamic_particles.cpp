@@ -25,11 +25,9 @@ using sph::wall_mass;
 using sph::wall_sound_speed;
 using sph::wall_density_rate;
 using sph::wall_density_n;
+using sph::wall_viscous_velocity;
 
 const FieldInfo wall_position0{"position0", FieldType::vector, "m", false, true};
-// v_b* of a wall particle, refilled by every fill_wall_state(); a store field so
-// that it reaches the halo copies on other MPI ranks.
-const FieldInfo wall_viscous_velocity{"viscous_velocity", FieldType::vector, "m/s", false, false};
 
 // The wall store's fields over this model's particles [first, first + count).
 struct WallFields {

@@ -26,6 +26,7 @@ using sph::wall_mass;
 using sph::wall_sound_speed;
 using sph::wall_density_rate;
 using sph::wall_density_n;
+using sph::wall_viscous_velocity;
 
 const FieldInfo block_offset{"block_offset", FieldType::vector, "m", false, true};
 
@@ -168,9 +169,9 @@ void BlockParticles::bind(World& world, const sph::FluidSettings& settings) {
   rows_.clear();
   all_.clear();
   covered_.clear();
-  ghost_offset_.assign(s.size(), Vec3{});
   fitted_ = 0;
   mirror_ = mdbc_ && (slip_ == sph::WallSlip::free_slip || settings.viscous_velocity);
+  if (mirror_) s.require(wall_viscous_velocity);
   for (std::size_t k = 0; k < blocks_.size(); ++k) {
     const Polyhedron& poly = b.shape[blocks_[k]];
     std::vector<char> covered;
@@ -196,9 +197,6 @@ void BlockParticles::bind(World& world, const sph::FluidSettings& settings) {
       world.bodies[bodies_[k]].params.fail("shape", "block '" + names_[k] + "' holds no boundary particle at dp = " +
                                                         std::to_string(dp_) + "; give block_particles a smaller \"dp\"");
     const std::size_t first = s.append(points.size());
-    ghost_offset_.resize(s.size());
-    for (std::size_t q = 0; q < points.size(); ++q)
-      ghost_offset_[first + q] = ghost_offset(poly, points[q], covered, dp_);
     auto off = s.vector("block_offset");
     auto rho = s.scalar("density");
     auto m = s.scalar("mass");
@@ -217,9 +215,7 @@ void BlockParticles::bind(World& world, const sph::FluidSettings& settings) {
   cells_.assign(blocks_.size(), NeighbourGrid{});
   for (auto& c : cells_) c.configure(world.dim, settings.lo, settings.hi, radius, world.periodic);
   inv_rho_.assign(s.size(), 0.0);  // indexed like world.boundary (only my range is used)
-  ghost_offset_.resize(s.size());
-  ghost_.assign(mdbc_ ? s.size() : 0, Vec3{});
-  viscous_v_.assign(mirror_ ? s.size() : 0, Vec3{});
+  find_ghost_offsets(world);
   ledger_.reset(blocks_.size());
   place(world);
   refresh_sets(world);
@@ -228,14 +224,26 @@ void BlockParticles::bind(World& world, const sph::FluidSettings& settings) {
 }
 
 // DBC block particles need the fluid within one support radius, which the
-// halo holds; the fluid's force on a block is summed over the ranks
-// (ImpulseLedger), and every rank moves the blocks alike (the dda stage runs
-// on every rank with the same forces).
-std::string BlockParticles::why_not_on_ranks() const {
-  if (mdbc_)
-    return "\"method\": \"mdbc\" for blocks (ghost nodes that move with their block, outside the store) is not "
-           "written for several MPI ranks yet (mDBC walls are)";
-  return {};
+// halo holds; mDBC's ghost nodes lie up to two layers' depth inside the fluid:
+// reach_beyond_radius() widens the halo by that much. The fluid's force on a
+// block is summed over the ranks (ImpulseLedger), and every rank moves the
+// blocks alike (the dda stage runs on every rank with the same forces).
+std::string BlockParticles::why_not_on_ranks() const { return {}; }
+
+// mDBC: each particle's ghost node in the body frame, found again from its
+// body-frame offset whenever the rows move (on several ranks).
+void BlockParticles::find_ghost_offsets(World& world) {
+  if (!mdbc_) return;
+  const ParticleStore& s = world.boundary;
+  const BlockSet& b = *world.blocks;
+  const auto off = s.vector("block_offset");
+  ghost_offset_.assign(s.size(), Vec3{});
+  for (std::size_t k = 0; k < blocks_.size(); ++k)
+    for (const Index p : rows_[k]) {
+      ghost_offset_[p] = ghost_offset(b.shape[blocks_[k]], off[p], covered_[k], dp_);
+      ghost_reach_ = std::max(ghost_reach_, norm(ghost_offset_[p] - off[p]));
+    }
+  place_ghosts(world);
 }
 
 void BlockParticles::rows_moved(World& world) {
@@ -250,6 +258,7 @@ void BlockParticles::rows_moved(World& world) {
     all_.push_back(static_cast<Index>(i));
   }
   inv_rho_.assign(s.size(), 0.0);
+  find_ghost_offsets(world);
   refresh_sets(world);
 }
 
@@ -271,14 +280,6 @@ std::span<const Vec3> BlockParticles::positions_of(const World& world, std::size
   return outer_x_;
 }
 
-std::pair<std::size_t, std::size_t> BlockParticles::range_of(std::size_t k) const {
-  const std::vector<Index>& rows = rows_[k];
-  if (rows.empty()) return {0, 0};
-  if (!is_one_range(rows))
-    throw RunError("block_particles: the particles of block '" + names_[k] + "' are not one range of rows");
-  return {rows.front(), rows.size()};
-}
-
 // Particles at the blocks' current poses with their rigid velocities.
 void BlockParticles::place(World& world) {
   ParticleStore& s = world.boundary;
@@ -294,8 +295,18 @@ void BlockParticles::place(World& world) {
       const Vec3 r = rotate(q, off[p]);
       x[p] = wrap_periodic(world, X + r);  // a block may straddle a periodic boundary: its particles stay inside
       v[p] = V + cross(w, r);
-      if (mdbc_) ghost_[p] = wrap_periodic(world, X + rotate(q, ghost_offset_[p]));
     }
+  }
+  place_ghosts(world);
+}
+
+void BlockParticles::place_ghosts(World& world) {
+  if (!mdbc_) return;
+  const BlockSet& b = *world.blocks;
+  ghost_.resize(world.boundary.size());
+  for (std::size_t k = 0; k < blocks_.size(); ++k) {
+    const std::size_t i = blocks_[k];
+    for (const Index p : rows_[k]) ghost_[p] = wrap_periodic(world, b.position[i] + rotate(b.orientation[i], ghost_offset_[p]));
   }
 }
 
@@ -400,7 +411,7 @@ void BlockParticles::refresh_sets(World& world) {
     set.position = x;
     set.fields = {v.data(), rho.data(), p.data(), c.data(), m.data(), mat.data()};
     set.fields.inv_density = inv_rho_.data();
-    set.viscous_velocity = mirror_ ? viscous_v_.data() : set.fields.velocity;
+    set.viscous_velocity = mirror_ ? s.vector(wall_viscous_velocity.name).data() : set.fields.velocity;
     set.rigid_body = true;
     const std::size_t blk = blocks_[k];
     set.body = {b.position[blk], b.bounds_lo[blk], b.bounds_hi[blk]};
@@ -412,30 +423,40 @@ std::uint64_t BlockParticles::fill_wall_state(World& world, const sph::FluidView
   return mdbc_ ? fill_from_ghost_nodes(world, fluid) : fill_continuity(world, fluid);
 }
 
-// mDBC: density (then pressure) and the viscous velocity from the ghost nodes.
+// mDBC: density (then pressure) and the viscous velocity from the ghost nodes,
+// for the particles this rank owns (gathered: on several ranks a block's owned
+// rows are no one range); the halo copies' values come from their owners.
 std::uint64_t BlockParticles::fill_from_ghost_nodes(World& world, const sph::FluidView& fluid) {
   ParticleStore& s = world.boundary;
+  const std::size_t owned = s.owned_size();
   const std::span<const Vec3> x = s.position();
   const auto v = s.vector("velocity");
   const auto rho = s.scalar("density");
   const auto p = s.scalar("pressure");
+  const std::span<Vec3> viscous = mirror_ ? s.vector(wall_viscous_velocity.name) : std::span<Vec3>();
   const EquationOfState& eos = *world.materials[material_].eos;
   std::uint64_t pairs = 0;
   for (std::size_t k = 0; k < blocks_.size(); ++k) {
-    const auto [first, count] = range_of(k);
-    const sph::GhostNodes nodes{x.subspan(first, count), std::span<const Vec3>(ghost_).subspan(first, count),
-                                v.subspan(first, count)};
-    pairs += sph::extrapolate_from_ghost_nodes(world.dim, nodes, fluid, *settings_.kernel, slip_,
-                                               p.subspan(first, count),
-                                               mirror_ ? std::span<Vec3>(viscous_v_).subspan(first, count)
-                                                       : std::span<Vec3>());
-    // The density from the EOS, never below rho0 (as DBC: a block never pulls the fluid).
-    for (std::size_t q = first; q < first + count; ++q) {
-      rho[q] = std::max(rho0_, eos.density_at(std::max(0.0, p[q])));
-      inv_rho_[q] = 1.0 / rho[q];
+    nodes_.clear();
+    for (const Index q : rows_[k])
+      if (static_cast<std::size_t>(q) < owned) nodes_.add(q, x[q], ghost_[q], v[q]);
+    nodes_.size_outputs(mirror_);
+    pairs += sph::extrapolate_from_ghost_nodes(world.dim, {nodes_.wall, nodes_.ghost, nodes_.velocity}, fluid,
+                                               *settings_.kernel, slip_, nodes_.pressure, nodes_.viscous);
+    for (std::size_t j = 0; j < nodes_.rows.size(); ++j) {
+      p[nodes_.rows[j]] = nodes_.pressure[j];
+      if (mirror_) viscous[nodes_.rows[j]] = nodes_.viscous[j];
     }
   }
+  // The density from the EOS, never below rho0 (as DBC: a block never pulls the fluid).
+  for (const Index q : all_) rho[q] = std::max(rho0_, eos.density_at(std::max(0.0, p[q])));
   update_pressure(world);
+  if (world.parallel().ranks() > 1) {
+    static const std::string values[] = {wall_density.name, wall_pressure.name, wall_sound_speed.name,
+                                         wall_viscous_velocity.name};
+    world.parallel().refresh_halo(s, std::span(values).first(mirror_ ? 4 : 3));
+  }
+  for (const Index q : all_) inv_rho_[q] = 1.0 / rho[q];
   return pairs;
 }
 

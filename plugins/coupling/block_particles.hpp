@@ -49,6 +49,7 @@ class BlockParticles final : public sph::SphBoundary {
 
   void setup(World& world, std::span<const int> bodies) override;
   std::string why_not_on_ranks() const override;
+  double reach_beyond_radius() const override { return ghost_reach_; }
   void rows_moved(World& world) override;
   void bind(World& world, const sph::FluidSettings& settings) override;
   void begin_step(World& world) override;
@@ -74,9 +75,10 @@ class BlockParticles final : public sph::SphBoundary {
 
  private:
   void place(World& world);
+  void find_ghost_offsets(World& world);  // mDBC: from the body-frame offsets of my rows
+  void place_ghosts(World& world);        // mDBC: at the blocks' current poses
   void refresh_sets(World& world);  // grids and wall sets at the current block particles
   std::span<const Vec3> positions_of(const World& world, std::size_t k);  // block k's (a view, or copied to outer_x_)
-  std::pair<std::size_t, std::size_t> range_of(std::size_t k) const;       // mDBC: block k's rows are one range
   void initial_density(World& world);
   void update_pressure(World& world);
   std::uint64_t fill_continuity(World& world, const sph::FluidView& fluid);
@@ -108,9 +110,25 @@ class BlockParticles final : public sph::SphBoundary {
   std::vector<NeighbourGrid> cells_;  // per block
   std::vector<sph::WallSet> sets_;         // per block
   std::vector<double> inv_rho_;            // 1/rho of my particles, refreshed by every fill_wall_state()
-  // mDBC, indexed like world.boundary (only my ranges are used): body-frame
-  // ghost offsets, ghost nodes now, viscous velocity.
-  std::vector<Vec3> ghost_offset_, ghost_, viscous_v_;
+  // mDBC, indexed like world.boundary (only my rows are used): body-frame
+  // ghost offsets and ghost nodes now; the farthest ghost node from its particle.
+  std::vector<Vec3> ghost_offset_, ghost_;
+  double ghost_reach_ = 0.0;
+  // One block's owned particles, gathered for the extrapolation, and its results.
+  struct OwnedNodes {
+    std::vector<Index> rows;
+    std::vector<Vec3> wall, ghost, velocity, viscous;
+    std::vector<double> pressure;
+    void clear() { rows.clear(), wall.clear(), ghost.clear(), velocity.clear(); }
+    void add(Index row, const Vec3& x, const Vec3& g, const Vec3& v) {
+      rows.push_back(row), wall.push_back(x), ghost.push_back(g), velocity.push_back(v);
+    }
+    void size_outputs(bool mirror) {
+      pressure.resize(rows.size());
+      viscous.resize(mirror ? rows.size() : 0);
+    }
+  };
+  OwnedNodes nodes_;
   bool mirror_ = false;  // a mirrored viscous velocity (mdbc with laminar/Laplacian viscosity, or free slip)
   std::vector<std::uint8_t> inside_;          // per fluid particle: inside the block being checked
   std::vector<Vec3> impulse_, angular_;       // per block: what this rank's fluid put back gave it this step

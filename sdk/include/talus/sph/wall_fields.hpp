@@ -15,5 +15,9 @@ inline const FieldInfo wall_sound_speed{"sound_speed", FieldType::scalar, "m/s",
 inline const FieldInfo wall_density_rate{"density_rate", FieldType::scalar, "kg/m^3/s", false, false};
 // Density at the start of the step; rebuilt by begin_step, so not restarted.
 inline const FieldInfo wall_density_n{"density_n", FieldType::scalar, "kg/m^3", false, false};
+// The velocity a wall particle shows the viscous terms (mDBC's mirrored v_b*),
+// refilled by every fill_wall_state(); a store field so that it reaches the
+// halo copies on other MPI ranks.
+inline const FieldInfo wall_viscous_velocity{"viscous_velocity", FieldType::vector, "m/s", false, false};
 
 }  // namespace talus::sph
