@@ -62,6 +62,7 @@ void write_summary_file(const RunSummary& r, const std::string& path) {
                                        {"rebuilds", r.ranks.rebuilds},
                                        {"rebalances", r.ranks.rebalances},
                                        {"cost_imbalance", r.ranks.cost_imbalance},
+                                       {"cost_imbalance_mean", r.ranks.cost_imbalance_mean},
                                        {"peak_memory_mib_max", r.ranks.peak_memory_mib_max}}}};
   nlohmann::json stage_seconds = nlohmann::json::object();
   for (std::size_t i = 0; i < r.stages.size() && i < r.phases.stages.size(); ++i)
@@ -126,9 +127,10 @@ void print_summary(const RunSummary& r) {
               static_cast<unsigned long long>(steps), fixed(world.time, 6).c_str(), clock_text(wall).c_str(),
               wall > 0 ? steps / wall : 0.0, wall > 0 ? r.particle_steps / wall / 1e6 : 0.0, r.peak_memory_mib);
   if (r.ranks.count > 1)
-    std::printf("       %d MPI ranks: imbalance %.3f (cost %.3f at worst), halo %.1f %% of the owned particles, "
-                "%llu rebuilds, %llu rebalances, peak memory %.0f MiB on the largest rank\n",
-                r.ranks.count, r.ranks.imbalance, r.ranks.cost_imbalance, 100.0 * r.ranks.halo_share,
+    std::printf("       %d MPI ranks: imbalance %.3f (cost %.3f on average, %.3f at worst), halo %.1f %% of the owned "
+                "particles, %llu rebuilds, %llu rebalances, peak memory %.0f MiB on the largest rank\n",
+                r.ranks.count, r.ranks.imbalance, r.ranks.cost_imbalance_mean, r.ranks.cost_imbalance,
+                100.0 * r.ranks.halo_share,
                 static_cast<unsigned long long>(r.ranks.rebuilds), static_cast<unsigned long long>(r.ranks.rebalances),
                 r.ranks.peak_memory_mib_max);
   if (r.wall_particle_steps > 0 && wall > 0)

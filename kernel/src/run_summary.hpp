@@ -24,6 +24,7 @@ struct RankFigures {
   std::uint64_t rebuilds = 0;  // owners and halos rebuilt (re-sort, escape, skin)
   std::uint64_t rebalances = 0;  // new cuts after the first (cost above /ranks/rebalance_above)
   double cost_imbalance = 1.0;   // the largest measured cost of a rank over the mean the run stepped with
+  double cost_imbalance_mean = 1.0;  // the same, averaged over the steps
   double peak_memory_mib_max = 0.0;  // the largest rank's
 };
 

@@ -140,6 +140,9 @@ class TALUS_API Simulation {
   RankCost rank_cost_;                  // each owned particle's cost, measured at the last rebuild
   std::uint64_t rebalances_ = 0;        // new cuts after the first
   double worst_cost_imbalance_ = 1.0;   // the largest the run stepped with
+  double cost_imbalance_now_ = 1.0;     // the one measured at the last rebuild
+  double cost_imbalance_steps_ = 0.0;   // summed over the steps, for the mean
+  std::uint64_t steps_on_ranks_ = 0;
   double cut_imbalance_ = 1.0;          // what the last new cuts achieved
   bool rebalance_warned_ = false;
 };

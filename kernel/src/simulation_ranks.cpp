@@ -110,6 +110,7 @@ void Simulation::rebuild_ranks() {
     }
   }
   worst_cost_imbalance_ = std::max(worst_cost_imbalance_, imbalance);
+  cost_imbalance_now_ = imbalance;
   ++rebuilds_;
   fluid_over_ranks_ = static_cast<std::size_t>(ranks_->sum(static_cast<std::uint64_t>(world_.fluid.owned_size())));
   owned_rows_seen_ += world_.fluid.owned_size() + world_.boundary.owned_size();
@@ -141,6 +142,8 @@ double Simulation::imbalance_over_ranks(double mine) const {
 }
 
 void Simulation::rank_upkeep(bool resort_due) {
+  cost_imbalance_steps_ += cost_imbalance_now_;  // the step just taken ran with it
+  ++steps_on_ranks_;
   const std::uint64_t escaped = ranks_->sum(static_cast<std::uint64_t>(flag_escaped_particles()));
   Vec3 period{};
   for (int a = 0; a < 3; ++a)
@@ -177,6 +180,7 @@ RankFigures Simulation::figures_over_ranks(std::uint64_t own_particle_steps) con
   f.rebuilds = rebuilds_;
   f.rebalances = rebalances_;
   f.cost_imbalance = worst_cost_imbalance_;
+  f.cost_imbalance_mean = steps_on_ranks_ ? cost_imbalance_steps_ / steps_on_ranks_ : cost_imbalance_now_;
   f.peak_memory_mib_max = ranks_->max(peak_memory_mib());
   return f;
 }

@@ -133,9 +133,12 @@ def main():
         with open(summary) as f:
             r = json.load(f)["ranks"]
         enough = r["rebalances"] >= a.min_rebalances
+        # The mean over the steps lies between the best possible (1) and the worst the run stepped with.
+        mean_ok = 1.0 <= r["cost_imbalance_mean"] <= r["cost_imbalance"] * (1 + 1e-12)
         print(f"{n} ranks: {r['rebalances']} rebalances in {r['rebuilds']} rebuilds, cost imbalance "
+              f"{r['cost_imbalance_mean']:.3f} on average{'' if mean_ok else ' (outside [1, worst]: FAIL)'}, "
               f"{r['cost_imbalance']:.3f} at worst{'' if enough else f', fewer than {a.min_rebalances}: FAIL'}")
-        failed |= not enough
+        failed |= not enough or not mean_ok
     sys.exit(1 if failed else 0)
 
 
