@@ -473,14 +473,18 @@ std::uint64_t BlockParticles::fill_continuity(World& world, const sph::FluidView
     double rho = 0.0;
     double drho = 0.0;
   };
+  const auto owned = static_cast<Index>(s.owned_size());
   std::uint64_t pairs = 0;
   for (std::size_t k = 0; k < blocks_.size(); ++k) {
     const std::vector<Index>& rows = rows_[k];
     for (const Index q : rows) inv_rho_[q] = 1.0 / rho[q];
+    // The rows this rank owns, which come first (rows_ ascend): a halo copy's
+    // density comes from its owner before the next evaluation reads it.
+    const auto owned_rows = static_cast<std::size_t>(std::lower_bound(rows.begin(), rows.end(), owned) - rows.begin());
     auto start = [&](Index q) { return WallSums{v[rows[q]], rho[rows[q]], 0.0}; };
     auto finish = [&](Index q, const WallSums& sum) { drho[rows[q]] = sum.drho; };
-    pairs += sph::pair_pass(rows.size(), positions_of(world, k), *fluid.cells, kernel, sph::other_set, start,
-                            finish, continuity);
+    pairs += sph::pair_pass(owned_rows, positions_of(world, k), *fluid.cells, kernel, sph::other_set, start, finish,
+                            continuity);
   }
   return pairs;
 }

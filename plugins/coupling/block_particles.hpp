@@ -96,8 +96,8 @@ class BlockParticles final : public sph::SphBoundary {
   std::vector<int> bodies_;
   std::vector<std::string> names_;
   std::vector<std::size_t> blocks_;       // index in world.blocks per body
-  // Per block, its particles' rows in world.boundary: one range of rows on
-  // one rank; on several, wherever the host put the owned and halo rows.
+  // Per block, its particles' rows in world.boundary, ascending: one range of
+  // rows on one rank; on several, its owned rows first, then its halo copies.
   std::vector<std::vector<Index>> rows_;
   std::vector<Index> all_;                // my particles in world.boundary (EOS batch)
   std::vector<Vec3> outer_x_;             // one block's positions, for a pass over its particles
