@@ -15,6 +15,7 @@
 #include "simulation.hpp"
 #include "talus/boundary.hpp"
 #include "talus/error.hpp"
+#include "talus/stage.hpp"
 #include "talus/number_text.hpp"
 #include "talus/periodic.hpp"
 
@@ -23,7 +24,11 @@ namespace talus {
 namespace {
 
 // What runs on several ranks so far; the rest is refused before anything is written.
-std::string unsupported_on_ranks(const World& world) {
+std::string unsupported_on_ranks(const World& world, const std::vector<std::unique_ptr<Stage>>& stages,
+                                 const std::vector<std::string>& stage_names) {
+  for (std::size_t i = 0; i < stages.size(); ++i)
+    if (const std::string why = stages[i]->why_not_on_ranks(); !why.empty())
+      return "/pipeline/" + std::to_string(i) + ": stage '" + stage_names[i] + "': " + why + "; such stages";
   // The ranks share out particles; blocks are stepped on every rank alike.
   if (world.fluid.size() == 0 && world.boundary.size() == 0)
     return "/bodies: no body has particles (blocks only); scenes without particles";
@@ -55,7 +60,7 @@ std::string unsupported_on_ranks(const World& world) {
 
 void Simulation::start_ranks() {
   if (ranks::count() < 2) return;
-  const std::string what = unsupported_on_ranks(world_);
+  const std::string what = unsupported_on_ranks(world_, stages_, stage_names_);
   if (!what.empty())
     throw InputError("error: " + scene_.path + ": " + what + " do not run on several MPI ranks yet (" +
                      std::to_string(ranks::count()) + " were started); run this scene on one process");

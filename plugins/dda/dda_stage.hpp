@@ -47,6 +47,8 @@ class DdaStage final : public Stage {
   double stable_time_step(World& world) override;
   void advance(World& world, double dt) override;
   StagePlan plan(const World& world) const override;
+  // Every rank steps every block alike, with the same summed fluid forces.
+  std::string why_not_on_ranks() const override { return {}; }
   std::string status(const World& world) const override;
   // Checkpoints: contact history, angular momenta, the leapfrog start flag,
   // the stable step and the energy balance (everything outside BlockSet's

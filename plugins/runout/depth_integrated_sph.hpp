@@ -85,6 +85,9 @@ class DepthIntegratedSph final : public Stage {
   double stable_time_step(World& world) override;
   void advance(World& world, double dt) override;
   StagePlan plan(const World& world) const override;
+  std::string why_not_on_ranks() const override {
+    return "the depth-integrated run-out keeps its particles' neighbours and its rasters on one process";
+  }
   std::string status(const World& world) const override;
 
   // Writes the rasters (PREFIX_*.asc); the stage does it by itself at

@@ -43,6 +43,9 @@ class StrengthReduction final : public Stage {
   double stable_time_step(World& world) override;
   void advance(World& world, double dt) override;
   StagePlan plan(const World& world) const override;
+  std::string why_not_on_ranks() const override {
+    return "the strength reduction's trials and its hand-off to the run-out run on one process";
+  }
   std::string status(const World& world) const override;
   std::string save_state() const override;
   void load_state(std::string_view bytes) override;

@@ -48,6 +48,12 @@ class TALUS_API Stage : public Model {
   // Registers fields, checks the bodies and materials it handles (throwing
   // InputError with the JSON pointer on a semantic problem), allocates.
   virtual void setup(World& world) = 0;
+  // On several MPI ranks each rank owns the particles in its region and holds
+  // copies of the others' within a halo, which a stage's pair loops must keep
+  // fresh (Parallel::refresh_halo); blocks are stepped on every rank alike.
+  // Empty when this stage works so; else why not, which the host names when
+  // it refuses the run.
+  virtual std::string why_not_on_ranks() const { return "its plugin does not say that it runs on several MPI ranks"; }
   // Largest stable dt for the current state (infinity if no limit). A stage
   // whose bound needs its rates (accelerations) may evaluate them here, into
   // its fields, for the advance() that follows to reuse.
