@@ -97,6 +97,7 @@ class TALUS_API Simulation {
   double imbalance_over_ranks(double mine) const;
   void rebuild_ranks();
   void rank_upkeep(bool resort_due);
+  void refresh_halos_for_writers();  // before the writers that run on every rank
   void gather_for_writers();
   void release_after_writers();
   void wall_rows_moved();  // after the ranks moved rows: the boundary models re-lay their particles

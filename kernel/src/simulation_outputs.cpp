@@ -79,6 +79,9 @@ void Simulation::write_due_outputs(bool force) {
   };
   auto gathered = [&](const ScheduledWriter& w) { return ranks_ && !w.writer->writes_on_every_rank(); };
   if (std::none_of(writers_.begin(), writers_.end(), due)) return;
+  const bool every_rank =
+      ranks_ && std::any_of(writers_.begin(), writers_.end(), [&](const auto& w) { return due(w) && !gathered(w); });
+  if (every_rank) refresh_halos_for_writers();
   for (auto& w : writers_)
     if (due(w) && !gathered(w)) w.writer->write(world_);
   const bool gather = std::any_of(writers_.begin(), writers_.end(), [&](const auto& w) { return due(w) && gathered(w); });

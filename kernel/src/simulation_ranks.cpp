@@ -190,6 +190,17 @@ RankFigures Simulation::figures_over_ranks(std::uint64_t own_particle_steps) con
   return f;
 }
 
+// The stages leave the halo copies as their own partial rates moved them
+// (each evaluation refreshes them first); a writer on every rank that reads a
+// particle's neighbours (the probes' wall forces) needs them as their owners have them.
+void Simulation::refresh_halos_for_writers() {
+  for (ParticleStore* store : {&world_.fluid, &world_.boundary}) {
+    std::vector<std::string> fields;
+    for (const FieldInfo& field : store->fields()) fields.push_back(field.name);
+    ranks_->refresh_halo(*store, fields);
+  }
+}
+
 void Simulation::gather_for_writers() {
   if (ranks_) ranks_->gather_to_root(world_);
 }

@@ -412,10 +412,11 @@ void ProbesWriter::MaterialSampler::configure(const World& world, const ParamVal
 
 void ProbesWriter::MaterialSampler::bind(const ParticleStore& fluid, std::span<const double> all_volumes) {
   const auto of = fluid.integer("material");
-  volume.resize(fluid.size());
+  const std::size_t owned = fluid.owned_size();
+  volume.resize(owned);
 #pragma omp parallel for
-  for (std::size_t i = 0; i < fluid.size(); ++i) volume[i] = of[i] == material ? all_volumes[i] : 0.0;
-  sampler.bind(fluid.position(), volume);
+  for (std::size_t i = 0; i < owned; ++i) volume[i] = of[i] == material ? all_volumes[i] : 0.0;
+  sampler.bind(fluid.position().first(owned), volume);
 }
 
 void ProbesWriter::check(const World& world) const { ProbesWriter(params_).prepare(world); }
@@ -426,21 +427,28 @@ std::vector<std::string> ProbesWriter::series(const World& world) const {
   return prepared.names_;
 }
 
+// On several MPI ranks every rank samples its own particles and rank 0 alone
+// keeps the file.
 void ProbesWriter::open(const OutputContext& context, const World& world) {
   check_writable_directory(context.directory);
   prepare(world);
   path_ =
       join_path(context.directory, params_.has("file") ? params_.string("file") : context.scene_name + "_probes.csv");
   results_path_ = (path_.ends_with(".csv") ? path_.substr(0, path_.size() - 4) : path_) + "_results.json";
-  const std::string header = join(names_, ",");
+  const Parallel& ranks = world.parallel();
+  writes_file_ = ranks.rank() == 0;
   std::uint64_t last_kept_step = 0;
   bool kept_rows = false;
-  const std::size_t keep = context.resume ? resume_bytes(header, world.step, last_kept_step, kept_rows) : 0;
-  file_.open(path_, keep);
-  if (keep == 0) file_.append(comment_lines(context, world) + header + "\n");
-  // After a restart the host may write the checkpoint's state again.
-  have_last_step_ = kept_rows && last_kept_step == world.step;
-  last_step_ = last_kept_step;
+  if (writes_file_) {
+    const std::string header = join(names_, ",");
+    const std::size_t keep = context.resume ? resume_bytes(header, world.step, last_kept_step, kept_rows) : 0;
+    file_.open(path_, keep);
+    if (keep == 0) file_.append(comment_lines(context, world) + header + "\n");
+  }
+  // After a restart the host may write the checkpoint's state again; every
+  // rank must skip that row alike, as each takes part in every row's sums.
+  have_last_step_ = ranks.max(kept_rows && last_kept_step == world.step ? 1.0 : 0.0) > 0.0;
+  last_step_ = static_cast<std::uint64_t>(ranks.max(static_cast<double>(last_kept_step)));
 }
 
 void ProbesWriter::prepare(const World& world) {
@@ -496,16 +504,24 @@ void ProbesWriter::prepare(const World& world) {
     if (runup_line_ && params_.has("runup_material")) runup_wet_.configure(world, params_, "runup_material");
     if (!bed_gauges_.empty()) bed_.configure(world, params_, "bed_material");
     sampler_.configure(world.dim, world.lo, world.hi, world.periodic, world.kernel);
+    force_sampler_.configure(world.dim, world.lo, world.hi, world.periodic, world.kernel);
     if (gauge_step_ <= 0.0) gauge_step_ = world.dp > 0.0 ? 0.25 * world.dp : 0.25 * world.kernel.h();
+    top_ = up_ > 0 ? world.hi[vertical_] : world.lo[vertical_];
+    bottom_ = up_ > 0 ? world.lo[vertical_] : world.hi[vertical_];
+    for (auto* gauges : {&gauges_, &bed_gauges_})
+      for (auto& g : *gauges) g.samples = line_samples(g.at, vertical_, top_, bottom_, gauge_step_, 0);
+    if (runup_line_) runup_ = slope_samples((*runup_line_)[0], (*runup_line_)[1], vertical_, up_, gauge_step_);
   }
   select_sensor_particles(world);
   resolve_columns(world);
 }
 
 
+// This rank's share: a sum over the particles it owns (its count of removed
+// ones), or their peak speed.
 double ProbesWriter::integral(Quantity q, const World& world) const {
   const ParticleStore& s = world.fluid;
-  const std::size_t n = s.size();
+  const std::size_t n = s.owned_size();
   const bool has_mass = s.has("mass");
   const auto mass = has_mass ? s.scalar("mass") : std::span<const double>{};
   const auto vel = s.has("velocity") ? s.vector("velocity") : std::span<const Vec3>{};
@@ -544,7 +560,9 @@ double ProbesWriter::integral(Quantity q, const World& world) const {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
-Vec3 ProbesWriter::wall_force(int body, const World& world) const {
+// Over the wall particles this rank owns (their fluid neighbours are owned or
+// halo rows, all bound to `fluid`).
+Vec3 ProbesWriter::wall_force(int body, const World& world, const SphSampler& fluid) const {
   // The pressure term the solver applies between fluid particles j and the
   // body's wall particles a (sph::PressureForce), from the wall's side:
   //   F = -sum_a m_a sum_j m_j (p_a + p_j)/(rho_a rho_j) grad_a W_aj,
@@ -555,9 +573,9 @@ Vec3 ProbesWriter::wall_force(int body, const World& world) const {
   const ForceFields fields(world);
   double fx = 0.0, fy = 0.0, fz = 0.0;
 #pragma omp parallel for reduction(+ : fx, fy, fz) schedule(static)
-  for (std::size_t a = 0; a < wall.size(); ++a) {
+  for (std::size_t a = 0; a < wall.owned_size(); ++a) {
     if (owner[a] != body) continue;
-    const Vec3 f = particle_force(a, fields);
+    const Vec3 f = particle_force(a, fields, fluid);
     fx += f.x;
     fy += f.y;
     fz += f.z;
@@ -578,14 +596,14 @@ ProbesWriter::ForceFields::ForceFields(const World& world)
   fluid.inv_density = inv_rho.data();
 }
 
-Vec3 ProbesWriter::particle_force(std::size_t a, const ForceFields& s) const {
+Vec3 ProbesWriter::particle_force(std::size_t a, const ForceFields& s, const SphSampler& fluid) const {
   struct Sums {
     double p, inv_rho;
     Vec3 acc;
   } sums{s.pa[a], 1.0 / s.rhoa[a], {}};
   const sph::PressureForce pressure{s.fluid};
-  const KernelTable& kernel = sampler_.kernel();
-  sampler_.for_each_neighbour(s.xa[a], [&](Index j, const Vec3& dx, double r) {
+  const KernelTable& kernel = fluid.kernel();
+  fluid.for_each_neighbour(s.xa[a], [&](Index j, const Vec3& dx, double r) {
     sph::Pair q;
     q.j = j;
     q.dx = dx;
@@ -601,11 +619,15 @@ Vec3 ProbesWriter::particle_force(std::size_t a, const ForceFields& s) const {
 // within the kernel support (deeper ones feel no fluid) and a distance along
 // the wall |(x_a - at) - ((x_a - at).n) n| <= size/2. The patch's area is the
 // number of those in the first layer (depth < dp) times dp^(dim-1): every
-// first-layer particle stands for dp^(dim-1) of the wall surface.
+// first-layer particle stands for dp^(dim-1) of the wall surface. On several
+// MPI ranks each rank selects among the wall particles it owns, and the
+// nearest particle and the first layer's count are taken over all ranks.
 void ProbesWriter::select_sensor_particles(const World& world) {
   sensor_wall_size_ = world.boundary.size();
   if (sensors_.empty()) return;
+  const Parallel& ranks = world.parallel();
   const ParticleStore& wall = world.boundary;
+  const std::size_t owned = wall.owned_size();
   const auto x = wall.position();
   const auto owner = wall.body();
   const double reach = world.kernel.support_radius();
@@ -615,7 +637,7 @@ void ProbesWriter::select_sensor_particles(const World& world) {
     // The wall's spacing: that of the body of the nearest wall particle behind the surface.
     double best = std::numeric_limits<double>::infinity();
     int body = -1;
-    for (std::size_t a = 0; a < wall.size(); ++a) {
+    for (std::size_t a = 0; a < owned; ++a) {
       const Vec3 d = x[a] - s.at;
       const double r2 = norm2(d);
       if (dot(d, s.normal) <= 0.0 && r2 < best) {
@@ -623,10 +645,12 @@ void ProbesWriter::select_sensor_particles(const World& world) {
         body = owner[a];
       }
     }
+    const double nearest = ranks.min(best);
+    body = static_cast<int>(ranks.max(best == nearest ? static_cast<double>(body) : -1.0));
     const double dp = body >= 0 && world.bodies[body].dp > 0.0 ? world.bodies[body].dp : world.dp;
     const double half = 0.5 * (sensor_size_ > 0.0 ? sensor_size_ : dp) * (1.0 + 1e-9);
-    std::size_t surface = 0;
-    for (std::size_t a = 0; a < wall.size(); ++a) {
+    std::uint64_t surface = 0;
+    for (std::size_t a = 0; a < owned; ++a) {
       const Vec3 d = x[a] - s.at;
       const double depth = -dot(d, s.normal);
       if (depth < 0.0 || depth > reach + 0.5 * dp) continue;
@@ -634,6 +658,7 @@ void ProbesWriter::select_sensor_particles(const World& world) {
       s.particles.push_back(static_cast<Index>(a));
       if (depth < dp) ++surface;
     }
+    surface = ranks.sum(surface);
     if (surface == 0)
       params_.fail("wall_sensors", s.name + " at " + point_text(s.at, world.dim) +
                                        ": no wall particle within one spacing behind it along the normal " +
@@ -643,25 +668,25 @@ void ProbesWriter::select_sensor_particles(const World& world) {
   }
 }
 
-double ProbesWriter::sensor_pressure(const WallSensor& sensor, const World& world) const {
+// This rank's share of the normal force on the sensor's patch (divided by the whole patch's area).
+double ProbesWriter::sensor_pressure(const WallSensor& sensor, const World& world, const SphSampler& fluid) const {
   const ForceFields fields(world);
   double push = 0.0;  // the fluid pushes the wall along -n
-  for (Index a : sensor.particles) push -= dot(particle_force(a, fields), sensor.normal);
+  for (Index a : sensor.particles) push -= dot(particle_force(a, fields, fluid), sensor.normal);
   return push / sensor.area;
 }
 
+// Every value of a row is a sum over particles (a peak speed: a maximum), so
+// on several MPI ranks each rank adds up the particles it owns and the ranks'
+// shares are added in one message (gauges with air below their surface take a
+// second); rank 0 writes the row.
 void ProbesWriter::write(const World& world) {
   if (have_last_step_ && world.step == last_step_) return;
+  const Parallel& ranks = world.parallel();
   const ParticleStore& fluid = world.fluid;
-  row_.clear();
-  row_ += format_real(world.time) + "," + std::to_string(world.step);
-  auto put = [&](double v) {
-    row_ += ',';
-    row_ += format_real(v);
-  };
-
-  if (!points_.empty() || !gauges_.empty() || !bed_gauges_.empty() || runup_line_ || !wall_bodies_.empty() ||
-      !sensors_.empty()) {
+  const std::size_t owned = fluid.owned_size();
+  const bool forces = !wall_bodies_.empty() || !sensors_.empty();
+  if (!points_.empty() || !gauges_.empty() || !bed_gauges_.empty() || runup_line_ || forces) {
     const std::size_t n = fluid.size();
     volume_.resize(n);
     if (fluid.has("mass") && fluid.has("density")) {
@@ -672,88 +697,170 @@ void ProbesWriter::write(const World& world) {
     } else {
       std::fill(volume_.begin(), volume_.end(), std::pow(world.dp, world.dim));
     }
-    sampler_.bind(fluid.position(), volume_);
+    sampler_.bind(fluid.position().first(owned), std::span<const double>(volume_).first(owned));
   }
+  // A wall particle's force reads its fluid neighbours on this rank, owned or halo.
+  if (forces && ranks.ranks() > 1) force_sampler_.bind(fluid.position(), volume_);
+  const SphSampler& force_fluid = ranks.ranks() > 1 ? force_sampler_ : sampler_;
 
+  shares_.clear();
+  auto share = [&](double v) { shares_.push_back(v); };
+  auto fill_along = [&](const SphSampler& sampler, const std::vector<Vec3>& samples) {
+    const std::size_t at = shares_.size();
+    shares_.resize(at + samples.size());
+    fill_fractions(sampler, samples, std::span<double>(shares_).subspan(at));
+  };
+  // Points: the Shepard weight, then a weighted sum per value.
   std::size_t c = 0;
   for (std::size_t p = 0; p < points_.size(); ++p) {
-    const double weight_sum = sampler_.gather(points_[p], neighbours_);
+    share(sampler_.gather(points_[p], neighbours_));
+    auto weighted = [&](auto&& value) {
+      double acc = 0.0;
+      for (const auto& nb : neighbours_) acc += nb.weight * value(nb.j);
+      share(acc);
+    };
     for (; c < point_columns_.size() && point_columns_[c].point == p; ++c) {
       const auto& col = point_columns_[c];
       if (!col.vector) {
         const auto f = fluid.scalar(col.field);
-        put(SphSampler::shepard(neighbours_, weight_sum, [&](Index j) { return f[j]; }));
+        weighted([&](Index j) { return f[j]; });
         continue;
       }
       const auto v = fluid.vector(col.field);
-      if (col.component < 3) {
-        const int k = col.component;
-        put(SphSampler::shepard(neighbours_, weight_sum, [&](Index j) { return v[j][k]; }));
-      } else {
-        double m2 = 0.0;
-        for (int k = 0; k < world.dim; ++k) {
-          const double vk = SphSampler::shepard(neighbours_, weight_sum, [&](Index j) { return v[j][k]; });
-          m2 += vk * vk;
-        }
-        put(std::sqrt(m2));
-      }
+      for (int k = col.component < 3 ? col.component : 0; k < (col.component < 3 ? col.component + 1 : world.dim); ++k)
+        weighted([&](Index j) { return v[j][k]; });
     }
   }
-  const double top = up_ > 0 ? world.hi[vertical_] : world.lo[vertical_];
-  const double bottom = up_ > 0 ? world.lo[vertical_] : world.hi[vertical_];
-  for (auto& g : gauges_) {
-    const double elevation = surface_elevation(sampler_, g.at, vertical_, bottom, top, gauge_step_, gauge_threshold_);
-    if (std::isnan(elevation) && !g.warned) {
-      g.warned = true;
-      world.warnings.add("probes: gauge '" + g.name + "' at " + point_text(g.at, world.dim) + " finds no free surface "
-                         "along " + kAxis[vertical_] + " at t = " + format_real(world.time) +
-                         " s (the line is dry): its column reads NaN while it stays dry");
-    }
-    put(elevation);
-    g.elevation = elevation;
-  }
-  const double min_gap = world.dp > 0.0 ? world.dp : world.kernel.h();
-  for (const auto& g : gauges_)
-    if (g.air)
-      put(std::isnan(g.elevation) ? 0.0
-                                  : air_below(sampler_, g.at, vertical_, g.elevation, bottom, gauge_step_,
-                                              gauge_threshold_, min_gap));
+  for (const auto& g : gauges_) fill_along(sampler_, g.samples);
   if (!bed_gauges_.empty()) bed_.bind(fluid, volume_);
-  for (auto& g : bed_gauges_)
-    put(surface_elevation(bed_.sampler, g.at, vertical_, bottom, top, gauge_step_, gauge_threshold_));
+  for (const auto& g : bed_gauges_) fill_along(bed_.sampler, g.samples);
   if (runup_line_) {
     if (runup_wet_.material >= 0) runup_wet_.bind(fluid, volume_);
-    const SphSampler& wet = runup_wet_.material >= 0 ? runup_wet_.sampler : sampler_;
-    put(highest_wet_point(wet, (*runup_line_)[0], (*runup_line_)[1], vertical_, up_, gauge_step_, gauge_threshold_));
+    fill_along(runup_wet_.material >= 0 ? runup_wet_.sampler : sampler_, runup_.samples);
   }
   if (material_masses_) {  // summed in particle id order: the re-sort does not change the sum's rounding
-    std::vector<double> sums(world.materials.size(), 0.0);
+    const std::size_t at = shares_.size();
+    shares_.resize(at + world.materials.size(), 0.0);
     const auto m = fluid.scalar("mass");
     const auto material = fluid.integer("material");
     const auto id = fluid.ids();
-    std::vector<Index> by_id(fluid.size());
+    std::vector<Index> by_id(owned);
     std::iota(by_id.begin(), by_id.end(), Index{0});
     std::sort(by_id.begin(), by_id.end(), [&](Index a, Index b) { return id[a] < id[b]; });
     for (Index i : by_id)
-      if (material[i] >= 0 && static_cast<std::size_t>(material[i]) < sums.size()) sums[material[i]] += m[i];
-    for (double s : sums) put(s);
+      if (material[i] >= 0 && static_cast<std::size_t>(material[i]) < world.materials.size())
+        shares_[at + material[i]] += m[i];
   }
-  for (auto q : integrals_) put(integral(q, world));
+  double peak_speed = 0.0;
+  for (auto q : integrals_) {
+    if (q == Quantity::max_speed) peak_speed = integral(q, world);
+    share(q == Quantity::max_speed ? 0.0 : integral(q, world));
+  }
   for (int body : wall_bodies_) {
-    const Vec3 f = wall_force(body, world);
-    for (int k = 0; k < world.dim; ++k) put(f[k]);
+    const Vec3 f = wall_force(body, world, force_fluid);
+    for (int k = 0; k < world.dim; ++k) share(f[k]);
   }
+  // On several ranks the rows move between frames: the sensors' particles are found again.
+  if (!sensors_.empty() && (ranks.ranks() > 1 || world.boundary.size() != sensor_wall_size_))
+    select_sensor_particles(world);
+  for (const auto& s : sensors_) share(sensor_pressure(s, world, force_fluid));
+  ranks.sum(std::span<double>(shares_));
+  peak_speed = ranks.max(peak_speed);
+
+  // The row, in the header's order.
+  row_.clear();
+  row_ += format_real(world.time) + "," + std::to_string(world.step);
+  auto put = [&](double v) {
+    row_ += ',';
+    row_ += format_real(v);
+  };
+  const double* next = shares_.data();
+  c = 0;
+  for (std::size_t p = 0; p < points_.size(); ++p) {
+    const double weight_sum = *next++;
+    auto shepard = [&](double acc) { return weight_sum > 0.0 ? acc / weight_sum : std::numeric_limits<double>::quiet_NaN(); };
+    for (; c < point_columns_.size() && point_columns_[c].point == p; ++c) {
+      const auto& col = point_columns_[c];
+      if (!col.vector || col.component < 3) {
+        put(shepard(*next++));
+        continue;
+      }
+      double m2 = 0.0;
+      for (int k = 0; k < world.dim; ++k) {
+        const double vk = shepard(*next++);
+        m2 += vk * vk;
+      }
+      put(std::sqrt(m2));
+    }
+  }
+  const double down = up_ > 0 ? -1.0 : 1.0;  // from top_ towards bottom_
+  for (auto& g : gauges_) {
+    const std::span<const double> phi(next, g.samples.size());
+    next += g.samples.size();
+    g.elevation = surface_elevation(g.samples, phi, vertical_, down, gauge_step_, gauge_threshold_);
+    if (std::isnan(g.elevation) && !g.warned) {
+      g.warned = true;
+      if (ranks.rank() == 0)
+        world.warnings.add("probes: gauge '" + g.name + "' at " + point_text(g.at, world.dim) +
+                           " finds no free surface along " + kAxis[vertical_] + " at t = " + format_real(world.time) +
+                           " s (the line is dry): its column reads NaN while it stays dry");
+    }
+    put(g.elevation);
+  }
+  put_air_below(world);
+  for (const auto& g : bed_gauges_) {
+    const std::span<const double> phi(next, g.samples.size());
+    next += g.samples.size();
+    put(surface_elevation(g.samples, phi, vertical_, down, gauge_step_, gauge_threshold_));
+  }
+  if (runup_line_) {
+    put(highest_wet_point(runup_, std::span<const double>(next, runup_.samples.size()), vertical_, gauge_threshold_));
+    next += runup_.samples.size();
+  }
+  if (material_masses_)
+    for (std::size_t m = 0; m < world.materials.size(); ++m) put(*next++);
+  for (auto q : integrals_) {
+    const double value = *next++;
+    put(q == Quantity::max_speed ? peak_speed : value);
+  }
+  for (std::size_t b = 0; b < wall_bodies_.size(); ++b)
+    for (int k = 0; k < world.dim; ++k) put(*next++);
   for (std::size_t b = 0; b < block_count_; ++b) {
     const bool present = world.blocks && b < world.blocks->size();
     for (int k = 0; k < world.dim; ++k)
       put(present ? world.blocks->external_force[b][k] : std::numeric_limits<double>::quiet_NaN());
   }
-  if (!sensors_.empty() && world.boundary.size() != sensor_wall_size_) select_sensor_particles(world);
-  for (const auto& s : sensors_) put(sensor_pressure(s, world));
+  for (std::size_t s = 0; s < sensors_.size(); ++s) put(*next++);
   row_ += '\n';
-  file_.append(row_);
+  if (writes_file_) file_.append(row_);
   have_last_step_ = true;
   last_step_ = world.step;
+}
+
+// The air under each surf gauge's surface (the gauges' elevations are those
+// of this row), sampled from the surface down: a second sum over the ranks.
+void ProbesWriter::put_air_below(const World& world) {
+  std::vector<std::vector<Vec3>> lines;
+  std::vector<double> phi;
+  const double bottom = bottom_;
+  for (const auto& g : gauges_)
+    if (g.air) {
+      lines.push_back(std::isnan(g.elevation) ? std::vector<Vec3>{}
+                                              : line_samples(g.at, vertical_, g.elevation, bottom, gauge_step_, 1));
+      const std::size_t at = phi.size();
+      phi.resize(at + lines.back().size());
+      fill_fractions(sampler_, lines.back(), std::span<double>(phi).subspan(at));
+    }
+  if (lines.empty()) return;
+  world.parallel().sum(std::span<double>(phi));
+  const double min_gap = world.dp > 0.0 ? world.dp : world.kernel.h();
+  const double* next = phi.data();
+  for (const auto& samples : lines) {
+    row_ += ',';
+    row_ += format_real(air_below(samples, std::span<const double>(next, samples.size()), vertical_,
+                                  gauge_threshold_, min_gap));
+    next += samples.size();
+  }
 }
 
 // The bed's change between the first and the last row along the bed gauges'
@@ -778,6 +885,7 @@ std::vector<WriterResult> ProbesWriter::bed_change() const {
 }
 
 void ProbesWriter::close(const World& world) {
+  if (!writes_file_) return;  // another rank's: rank 0 keeps the file and its results
   file_.close();
   if (path_.empty() || result_names().empty()) return;
   results_.clear();

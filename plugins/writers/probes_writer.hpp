@@ -51,6 +51,7 @@ class ProbesWriter final : public Writer {
   std::vector<std::string> series(const World& world) const override;
   std::vector<std::string> result_names() const override;
   std::vector<WriterResult> results() const override { return results_; }
+  bool writes_on_every_rank() const override { return true; }
 
   // The header row (column names) once open() ran, for tests and tools.
   const std::vector<std::string>& columns() const { return names_; }
@@ -69,6 +70,7 @@ class ProbesWriter final : public Writer {
     bool warned = false;  // its dry line was reported
     bool air = false;     // also records the air under its surface (a surf gauge of the waves section)
     double elevation = 0.0;  // of the row being written
+    std::vector<Vec3> samples;  // along its line, from the top down (line_samples)
   };
   struct WallSensor {
     std::string name;
@@ -88,7 +90,8 @@ class ProbesWriter final : public Writer {
   std::size_t resume_bytes(const std::string& header, std::uint64_t step, std::uint64_t& last_step, bool& rows) const;
   double integral(Quantity q, const World& world) const;
   std::vector<WriterResult> bed_change() const;
-  Vec3 wall_force(int body, const World& world) const;
+  // The fluid's force on a wall body, over the wall particles this rank owns.
+  Vec3 wall_force(int body, const World& world, const SphSampler& fluid) const;
   // The fields the wall force reads, looked up once per row.
   struct ForceFields {
     explicit ForceFields(const World& world);
@@ -99,10 +102,11 @@ class ProbesWriter final : public Writer {
     std::vector<double> inv_rho;  // 1/rho of the fluid particles
     sph::Neighbours fluid;        // the fluid as the solver's pressure term reads it
   };
-  // The pressure force of the fluid on wall particle a (needs the sampler bound to the fluid).
-  Vec3 particle_force(std::size_t a, const ForceFields& fields) const;
+  // The pressure force of the fluid (bound to `fluid`) on wall particle a.
+  Vec3 particle_force(std::size_t a, const ForceFields& fields, const SphSampler& fluid) const;
   void select_sensor_particles(const World& world);
-  double sensor_pressure(const WallSensor& sensor, const World& world) const;
+  double sensor_pressure(const WallSensor& sensor, const World& world, const SphSampler& fluid) const;
+  void put_air_below(const World& world);
 
   ParamValues params_;
   std::vector<Vec3> points_;
@@ -118,6 +122,7 @@ class ProbesWriter final : public Writer {
   };
   MaterialSampler bed_;
   std::optional<std::array<Vec3, 2>> runup_line_;
+  SlopeLine runup_;  // its samples
   MaterialSampler runup_wet_;  // unused: every fluid particle is wet
   bool bed_change_ = true;  // two bed gauges or more: the eroded and deposited cross-section
   std::vector<Quantity> integrals_;
@@ -130,6 +135,7 @@ class ProbesWriter final : public Writer {
   double gauge_step_ = 0.0, gauge_threshold_ = 0.5;
   int vertical_ = 2;
   double up_ = 1.0;  // +1: up is +vertical_ (gravity along -vertical_)
+  double top_ = 0.0, bottom_ = 0.0;  // the gauge lines' ends along vertical_
 
   std::vector<PointColumn> point_columns_;
   std::vector<std::string> names_, units_;
@@ -138,8 +144,11 @@ class ProbesWriter final : public Writer {
   std::vector<WriterResult> results_;
   std::string path_, results_path_;
   LineFile file_;
-  SphSampler sampler_;
+  SphSampler sampler_;        // the fluid particles this rank owns: each counted once over the ranks
+  SphSampler force_sampler_;  // on several ranks, with the halo: a wall particle's fluid neighbours
   std::vector<double> volume_;
+  std::vector<double> shares_;  // this rank's share of every sum in a row, then the sums over the ranks
+  bool writes_file_ = true;     // rank 0
   std::vector<Neighbour> neighbours_;
   std::string row_;
   bool have_last_step_ = false;

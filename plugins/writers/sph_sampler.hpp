@@ -10,6 +10,7 @@
 // ~0.5 at a free surface; wave gauges use it.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -87,44 +88,61 @@ class SphSampler {
   std::span<const double> volume_;
 };
 
-// Free-surface elevation along the line through `at` parallel to axis
-// `axis`: scanning from `top` (the side gravity points away from; above or
-// below `bottom` along the axis) towards `bottom` in steps of `step`, the
-// first point where phi >= threshold, placed by linear interpolation of phi
-// between it and the sample before. NaN when the whole line is dry.
-inline double surface_elevation(const SphSampler& sampler, Vec3 at, int axis, double bottom, double top, double step,
-                                double threshold) {
-  const double down = bottom < top ? -1.0 : 1.0;
-  double above_phi = 0.0;
-  for (int k = 0;; ++k) {
-    const double z = top + down * k * step;
-    if (down * (z - bottom) > 1e-12 * step) break;
+// The scans below read the fill fraction phi at a list of sample points and
+// nothing else: on several MPI ranks each rank sums its own particles' share
+// of phi at every sample (fill_fractions) and the ranks' sums are added before
+// the scan, which then sees what one process would.
+
+// phi at each point, from the particles bound to `sampler`.
+inline void fill_fractions(const SphSampler& sampler, std::span<const Vec3> points, std::span<double> phi) {
+  for (std::size_t k = 0; k < points.size(); ++k) phi[k] = sampler.fill_fraction(points[k]);
+}
+
+// The samples of the line through `at` parallel to axis `axis`, from `from`
+// towards `to` in steps of `step`, starting `first` steps in.
+inline std::vector<Vec3> line_samples(Vec3 at, int axis, double from, double to, double step, int first) {
+  const double down = to < from ? -1.0 : 1.0;
+  std::vector<Vec3> points;
+  for (int k = first;; ++k) {
+    const double z = from + down * k * step;
+    if (down * (z - to) > 1e-12 * step) break;
     at[axis] = z;
-    const double phi = sampler.fill_fraction(at);
-    if (phi >= threshold) {
-      if (k == 0) return z;
-      return z - down * step * (phi - threshold) / (phi - above_phi);
+    points.push_back(at);
+  }
+  return points;
+}
+
+// Free-surface elevation along a gauge line sampled by line_samples(at, axis,
+// top, bottom, step, 0), scanning from `top` (the side gravity points away
+// from) towards `bottom`: the first sample where phi >= threshold, placed by
+// linear interpolation of phi between it and the sample before. NaN when the
+// whole line is dry.
+inline double surface_elevation(std::span<const Vec3> samples, std::span<const double> phi, int axis, double down,
+                                double step, double threshold) {
+  double above_phi = 0.0;
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    if (phi[k] >= threshold) {
+      if (k == 0) return samples[k][axis];
+      return samples[k][axis] - down * step * (phi[k] - threshold) / (phi[k] - above_phi);
     }
-    above_phi = phi;
+    above_phi = phi[k];
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
 
-// Air under the free surface at `surface` (from surface_elevation) along the
-// same line: scanning on down, the length of the first stretch where
-// phi < threshold that has water (phi >= threshold) again below it: an
-// overturning crest, a plunging jet over the water it falls into. Stretches
-// shorter than `min_gap` (the dip of phi between close particles) and air
-// with no water under it before `bottom` count as none: 0.
-inline double air_below(const SphSampler& sampler, Vec3 at, int axis, double surface, double bottom, double step,
-                        double threshold, double min_gap) {
-  const double down = bottom < surface ? -1.0 : 1.0;
+// Air under the free surface along the same line, sampled by
+// line_samples(at, axis, surface, bottom, step, 1): scanning on down, the
+// length of the first stretch where phi < threshold that has water
+// (phi >= threshold) again below it: an overturning crest, a plunging jet over
+// the water it falls into. Stretches shorter than `min_gap` (the dip of phi
+// between close particles) and air with no water under it before the bottom
+// count as none: 0.
+inline double air_below(std::span<const Vec3> samples, std::span<const double> phi, int axis, double threshold,
+                        double min_gap) {
   double air_from = std::numeric_limits<double>::quiet_NaN();
-  for (int k = 1;; ++k) {
-    const double z = surface + down * k * step;
-    if (down * (z - bottom) > 1e-12 * step) return 0.0;
-    at[axis] = z;
-    const bool wet = sampler.fill_fraction(at) >= threshold;
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const double z = samples[k][axis];
+    const bool wet = phi[k] >= threshold;
     if (!wet && std::isnan(air_from)) air_from = z;
     if (wet && !std::isnan(air_from)) {
       const double gap = std::abs(z - air_from);
@@ -132,29 +150,37 @@ inline double air_below(const SphSampler& sampler, Vec3 at, int axis, double sur
       air_from = std::numeric_limits<double>::quiet_NaN();
     }
   }
+  return 0.0;
 }
 
-// The vertical coordinate of the highest wet point (phi >= threshold) on the
-// segment a-b, scanning in steps of `step` from its upper end (along `up` on
-// axis `vertical`), placed between the last dry and the first wet sample by
-// linear interpolation of phi; NaN when the whole segment is dry. The run-up
-// on a slope.
-inline double highest_wet_point(const SphSampler& sampler, Vec3 a, Vec3 b, int vertical, double up, double step,
-                                double threshold) {
+// The samples of the segment a-b from its upper end (along `up` on axis
+// `vertical`) in steps of at most `step`, for highest_wet_point.
+struct SlopeLine {
+  std::vector<Vec3> samples;
+  Vec3 down;  // from the upper end to the lower one
+};
+inline SlopeLine slope_samples(Vec3 a, Vec3 b, int vertical, double up, double step) {
   if (up * (a[vertical] - b[vertical]) > 0.0) std::swap(a, b);  // b is the upper end
-  const Vec3 d = a - b;
-  const double length = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+  SlopeLine line{{}, a - b};
+  const double length = norm(line.down);
   const int samples = std::max(1, static_cast<int>(std::ceil(length / step)));
+  for (int k = 0; k <= samples; ++k) line.samples.push_back(b + line.down * (static_cast<double>(k) / samples));
+  return line;
+}
+
+// The vertical coordinate of the highest wet point (phi >= threshold) on a
+// slope line, placed between the last dry and the first wet sample by linear
+// interpolation of phi; NaN when the whole segment is dry. The run-up on a slope.
+inline double highest_wet_point(const SlopeLine& line, std::span<const double> phi, int vertical, double threshold) {
+  const auto segments = static_cast<double>(line.samples.size() - 1);
   double above_phi = 0.0;
-  for (int k = 0; k <= samples; ++k) {
-    const Vec3 at = b + d * (static_cast<double>(k) / samples);
-    const double phi = sampler.fill_fraction(at);
-    if (phi >= threshold) {  // placed by linear interpolation of phi from the dry sample before, as above
-      if (k == 0) return at[vertical];
-      const double back = (phi - threshold) / (phi - above_phi) / samples;
-      return at[vertical] - d[vertical] * back;
+  for (std::size_t k = 0; k < line.samples.size(); ++k) {
+    if (phi[k] >= threshold) {  // placed by linear interpolation of phi from the dry sample before, as above
+      if (k == 0) return line.samples[k][vertical];
+      const double back = (phi[k] - threshold) / (phi[k] - above_phi) / segments;
+      return line.samples[k][vertical] - line.down[vertical] * back;
     }
-    above_phi = phi;
+    above_phi = phi[k];
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
