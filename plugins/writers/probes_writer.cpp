@@ -179,7 +179,7 @@ ProbesWriter::ProbesWriter(const ParamValues& params) : params_(params) {
       if (!(length > 0.0))
         params.fail("wall_sensor_normals", "the normal of wall sensor " + std::to_string(i + 1) + " is zero");
       const std::string name = names.empty() ? "W" + std::to_string(i + 1) : names[i];
-      sensors_.push_back({name, at[i], normals[i] * (1.0 / length), {}, 0.0});
+      sensors_.push_back({name, at[i], normals[i] * (1.0 / length), {}, 0, 0.0});
     }
   } else if (given_strings(params, "wall_sensor_names") || given_points(params, "wall_sensor_normals")) {
     params.fail(given_strings(params, "wall_sensor_names") ? "wall_sensor_names" : "wall_sensor_normals",
@@ -334,7 +334,7 @@ std::string ProbesWriter::comment_lines(const OutputContext& context, const Worl
            "/ the patch area, force as for wall forces):";
     for (const auto& w : sensors_)
       out += " " + w.name + "=" + point_text(w.at, world.dim) + " n=" + point_text(w.normal, world.dim) + " (" +
-             std::to_string(w.particles.size()) + " wall particles, area " + format_real(w.area) + ")";
+             std::to_string(w.particle_count) + " wall particles, area " + format_real(w.area) + ")";
     out += "\n";
   }
   if (block_count_ > 0) out += "# block forces: external force of the last step (coupling), N\n";
@@ -645,6 +645,7 @@ void ProbesWriter::select_sensor_particles(const World& world) {
         body = owner[a];
       }
     }
+    // (Two bodies exactly as near on two ranks: the larger id.)
     const double nearest = ranks.min(best);
     body = static_cast<int>(ranks.max(best == nearest ? static_cast<double>(body) : -1.0));
     const double dp = body >= 0 && world.bodies[body].dp > 0.0 ? world.bodies[body].dp : world.dp;
@@ -665,6 +666,7 @@ void ProbesWriter::select_sensor_particles(const World& world) {
                                        point_text(s.normal, world.dim) +
                                        "; put the sensor on a wall surface, the normal pointing into the fluid");
     s.area = static_cast<double>(surface) * std::pow(dp, world.dim - 1);
+    s.particle_count = ranks.sum(static_cast<std::uint64_t>(s.particles.size()));
   }
 }
 

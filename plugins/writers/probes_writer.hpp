@@ -75,7 +75,8 @@ class ProbesWriter final : public Writer {
   struct WallSensor {
     std::string name;
     Vec3 at, normal;                // a point on the wall surface; unit normal into the fluid
-    std::vector<Index> particles;   // wall particles behind the patch (indices in world.boundary)
+    std::vector<Index> particles;   // wall particles behind the patch (indices in world.boundary; this rank's)
+    std::uint64_t particle_count = 0;  // over all ranks
     double area = 0.0;              // m^2 (m in 2D): surface-layer particles times dp^(dim-1)
   };
 

@@ -2,7 +2,7 @@
 """Runs a scene serially and on several MPI ranks, with its probes writer
 given every kind of column (points, gauges, bed gauges, run-up, each
 material's mass, the integrals, wall forces and wall sensors), and compares
-the probes files row by row: the same header and steps, and every value
+the probes files: the same comment lines and header, the same steps, and every value
 within ABS + REL * (the column's largest magnitude in the serial run); NaN
 where the serial run has NaN. On several ranks every rank samples the
 particles it owns and the sums are added over the ranks, so the files differ
@@ -22,9 +22,12 @@ from compare_ranks import edited_copy, mpirun, run
 
 
 def read_probes(path):
+    """The '#' comment lines, the header and the rows."""
     with open(path) as f:
-        rows = [r for r in csv.reader(line for line in f if not line.startswith("#"))]
-    return rows[0], [[float(v) for v in r] for r in rows[1:]]
+        lines = f.read().splitlines()
+    comments = [line for line in lines if line.startswith("#")]
+    rows = list(csv.reader(line for line in lines if not line.startswith("#")))
+    return comments, rows[0], [[float(v) for v in r] for r in rows[1:]]
 
 
 def compare(label, header0, rows0, header, rows, rel, abs_tol):
@@ -81,12 +84,17 @@ def main():
     scene = edited_copy(a.scene, a.outdir, edit)
     serial = os.path.join(a.outdir, "serial")
     run([a.talus, "run", scene], serial)
-    header0, rows0 = read_probes(os.path.join(serial, name + "_probes.csv"))
+    comments0, header0, rows0 = read_probes(os.path.join(serial, name + "_probes.csv"))
     ok = True
     for n in a.ranks:
         out = os.path.join(a.outdir, f"ranks{n}")
         run(mpirun(n) + [a.talus, "run", scene], out)
-        header, rows = read_probes(os.path.join(out, name + "_probes.csv"))
+        comments, header, rows = read_probes(os.path.join(out, name + "_probes.csv"))
+        for line0, line in zip(comments0, comments + [""] * len(comments0)):
+            if line != line0:  # what the file says of its columns (a sensor's particles) is the serial run's
+                print(f"{n} ranks: comment line {line!r} against {line0!r}: FAIL")
+                ok = False
+                break
         ok &= compare(f"{n} ranks", header0, rows0, header, rows, a.rel_tol, a.abs_tol)
     sys.exit(0 if ok else 1)
 

@@ -55,8 +55,10 @@ class TALUS_API Writer : public Model {
   virtual std::vector<std::string> result_names() const { return {}; }
   virtual std::vector<WriterResult> results() const { return {}; }
   // On several MPI ranks: true when open(), write() and close() run on every
-  // rank, each writing its owned rows (ParticleStore::owned_size()) into the
-  // one file the ranks share. Otherwise the host calls them on rank 0 alone,
+  // rank, each taking its owned rows (ParticleStore::owned_size()): written
+  // into the one file the ranks share, or summed and the sums added over the
+  // ranks (Parallel::sum) for rank 0 to write. The halo copies are refreshed
+  // from their owners before. Otherwise the host calls them on rank 0 alone,
   // which then holds a copy of every particle.
   virtual bool writes_on_every_rank() const { return false; }
 };
