@@ -25,10 +25,10 @@ from types import SimpleNamespace
 
 # The model's parameters and their defaults (help text, value).
 PARAMETERS = {
-    "rate": ("particle-steps/s of one rank with every core busy (measured)", 8.64e5),
-    "halo_cost": ("cost of a halo row in a step relative to an owned one (measured)", 0.35),
-    "rebuild_cost": ("cost of a rebuild per row relative to a step of an owned row (measured)", 0.645),
-    "rebuild_every": ("steps between rebuilds (measured)", 22.2),
+    "rate": ("particle-steps/s of one rank with every core busy (measured)", 8.78e5),
+    "halo_cost": ("cost of a halo row in a step relative to an owned one (measured)", 0.354),
+    "rebuild_cost": ("cost of a rebuild per row relative to a step of an owned row (measured)", 0.742),
+    "rebuild_every": ("steps between rebuilds (measured)", 25.0),
     "imbalance": ("the busiest rank's work over the mean", 1.0),
     "row_bytes": ("bytes of one particle's fields in a refresh", 192.0),
     "refreshes": ("halo refreshes per step (symplectic: 2)", 2.0),
