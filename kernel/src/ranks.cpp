@@ -77,26 +77,46 @@ class ExchangeHost final : public Host {
   mpi::RankExchange exchange_;
 };
 
-// World.boundary's rows in two groups: wall particles, which one boundary
-// model holds as one range of rows (Boundary::rows_moved), and block
-// particles, whose models find them by body wherever they lie. Owned block
-// rows come first and owned wall rows last, and the halo holds the wall rows
-// first, so the wall rows, owned and halo, are one range.
+// World.boundary's rows in groups: the block particles, whose models find
+// them by body wherever they lie, and the wall particles of each wall model,
+// which keeps its own as one run of owned rows and one of halo rows
+// (Boundary::rows_moved). Owned rows: the blocks' first, then each wall
+// model's in turn; halo rows: each wall model's in the same order, then the
+// blocks'. The last wall model's owned rows and the first's halo rows meet,
+// so with one wall model its rows, owned and halo, are one run.
 void ExchangeHost::build_halos(World& world) {
   exchange_.drop_halos(stores_of(world));
   ParticleStore& boundary = world.boundary;
-  std::vector<std::uint8_t> block_row(boundary.size());
-  const auto body = boundary.body();
-  for (std::size_t i = 0; i < block_row.size(); ++i) block_row[i] = world.bodies[body[i]].kind == BodyKind::block;
-  if (!std::is_sorted(block_row.begin(), block_row.end(), std::greater<>())) {
-    std::vector<Index> order(block_row.size());
-    std::iota(order.begin(), order.end(), Index{0});
-    std::stable_partition(order.begin(), order.end(), [&](Index i) { return block_row[i] != 0; });
-    boundary.reorder(order);
-    std::sort(block_row.begin(), block_row.end(), std::greater<>());
+  std::vector<const Boundary*> wall_models;  // in the order of their first body
+  std::vector<std::uint8_t> group_of_body(world.bodies.size(), 0);
+  for (std::size_t b = 0; b < world.bodies.size(); ++b) {
+    if (world.bodies[b].kind != BodyKind::wall) continue;
+    const Boundary* model = world.bodies[b].boundary;
+    auto it = std::find(wall_models.begin(), wall_models.end(), model);
+    if (it == wall_models.end()) it = wall_models.insert(wall_models.end(), model);
+    group_of_body[b] = static_cast<std::uint8_t>(it - wall_models.begin());
   }
-  const std::vector<std::uint8_t> groups[2] = {{}, std::move(block_row)};
-  const int group_count[2] = {1, 2};
+  if (wall_models.size() > 254) throw RunError("error: more than 254 wall boundary models on several MPI ranks");
+  const auto blocks = static_cast<std::uint8_t>(wall_models.size());
+  for (std::size_t b = 0; b < world.bodies.size(); ++b)
+    if (world.bodies[b].kind == BodyKind::block) group_of_body[b] = blocks;
+  std::vector<std::uint8_t> group(boundary.size());
+  const auto body = boundary.body();
+  for (std::size_t i = 0; i < group.size(); ++i) group[i] = group_of_body[body[i]];
+  // Owned: the blocks (the last group) first, then the wall models in order.
+  auto owned_order = [&](std::uint8_t g) { return g == blocks ? -1 : static_cast<int>(g); };
+  if (!std::is_sorted(group.begin(), group.end(), [&](auto a, auto b) { return owned_order(a) < owned_order(b); })) {
+    std::vector<Index> order(group.size());
+    std::iota(order.begin(), order.end(), Index{0});
+    std::stable_sort(order.begin(), order.end(),
+                     [&](Index a, Index b) { return owned_order(group[a]) < owned_order(group[b]); });
+    boundary.reorder(order);
+    std::vector<std::uint8_t> sorted(group.size());
+    for (std::size_t i = 0; i < order.size(); ++i) sorted[i] = group[order[i]];
+    group = std::move(sorted);
+  }
+  const std::vector<std::uint8_t> groups[2] = {{}, std::move(group)};
+  const int group_count[2] = {1, blocks + 1};
   exchange_.build_halos(stores_of(world), groups, group_count);
 }
 

@@ -39,20 +39,6 @@ std::string unsupported_on_ranks(const World& world, const std::vector<std::uniq
         return "/bodies/" + std::to_string(b) + "/boundary: " + to_string(body.kind) + " '" + body.name + "': " + why +
                "; such " + to_string(body.kind) + "s";
   }
-  // The host keeps the wall particles of world.boundary as one range of rows
-  // (the block particles apart, ranks.cpp): one model must hold them all
-  // (Boundary::rows_moved).
-  std::vector<char> has_rows(world.bodies.size(), 0);
-  for (const std::int32_t b : world.boundary.body()) has_rows[b] = 1;
-  const Body* holder = nullptr;
-  for (std::size_t b = 0; b < world.bodies.size(); ++b) {
-    if (!has_rows[b] || !world.bodies[b].boundary || world.bodies[b].kind != BodyKind::wall) continue;
-    if (!holder) holder = &world.bodies[b];
-    else if (world.bodies[b].boundary != holder->boundary)
-      return "/bodies/" + std::to_string(b) + "/boundary: wall '" + world.bodies[b].name + "' has another boundary " +
-             "model or other parameters than wall '" + holder->name + "', so its wall particles belong to a " +
-             "second model; walls whose particles belong to several models";
-  }
   return {};
 }
 

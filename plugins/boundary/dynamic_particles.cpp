@@ -180,6 +180,7 @@ void DynamicParticles::setup(World& world, std::span<const int> bodies) {
     moves_ = moves_ || motion_.back().moves();
   }
   count_ = s.size() - first_;
+  ranges_ = {RowRange{first_, count_, 0}};
 }
 
 void DynamicParticles::bind(World& world, const sph::FluidSettings& settings) {
@@ -199,22 +200,30 @@ void DynamicParticles::bind(World& world, const sph::FluidSettings& settings) {
 }
 
 void DynamicParticles::lay_out(World& world) {
-  WallFields w(world.boundary, first_, count_);
   // Per-material index lists for the EOS batch calls (indices in world.boundary).
   by_material_.assign(world.materials.size(), {});
-  for (std::size_t k = 0; k < count_; ++k) by_material_[w.mat[k]].push_back(static_cast<Index>(first_ + k));
-  // Cell list over the fluid's bounds and the walls' own (walls may sit
+  // Cell lists over the fluid's bounds and the walls' own (walls may sit
   // outside the domain); moving walls are clamped into the edge cells.
   Vec3 lo = settings_.lo, hi = settings_.hi;
-  for (const Vec3& p : w.x)
-    for (int a = 0; a < world.dim; ++a) {
-      lo[a] = std::min(lo[a], p[a]);
-      hi[a] = std::max(hi[a], p[a] + 1e-9);
-    }
-  cells_.configure(world.dim, lo, hi, settings_.kernel->support_radius(), world.periodic);
-  cells_.build(w.x);
+  for (const RowRange& r : ranges_) {
+    WallFields w(world.boundary, r.first, r.count);
+    for (std::size_t k = 0; k < r.count; ++k) by_material_[w.mat[k]].push_back(static_cast<Index>(r.first + k));
+    for (const Vec3& p : w.x)
+      for (int a = 0; a < world.dim; ++a) {
+        lo[a] = std::min(lo[a], p[a]);
+        hi[a] = std::max(hi[a], p[a] + 1e-9);
+      }
+  }
+  cells_.resize(ranges_.size());
+  for (NeighbourGrid& cells : cells_) cells.configure(world.dim, lo, hi, settings_.kernel->support_radius(), world.periodic);
+  build_cells(world);
   inv_rho_.assign(count_, 0.0);
-  refresh_set(world);
+  refresh_sets(world);
+}
+
+void DynamicParticles::build_cells(World& world) {
+  const auto x = world.boundary.position();
+  for (std::size_t k = 0; k < ranges_.size(); ++k) cells_[k].build(x.subspan(ranges_[k].first, ranges_[k].count));
 }
 
 // DBC needs only the fluid within one support radius of each wall particle,
@@ -229,39 +238,55 @@ void DynamicParticles::rows_moved(World& world) {
   const ParticleStore& s = world.boundary;
   const auto body = s.body();
   auto mine = [&](std::size_t i) { return slot_of_body_[body[i]] >= 0; };
-  std::size_t first = 0;
-  while (first < s.size() && !mine(first)) ++first;
-  std::size_t end = first;
-  while (end < s.size() && mine(end)) ++end;
-  for (std::size_t i = 0; i < s.size(); ++i)
-    if ((i < first || i >= end) && (mine(i) || world.bodies[body[i]].kind != BodyKind::block))
-      throw RunError("error: wall '" + world.bodies[body[i]].name + "' " +
-                     (mine(i) ? "has particles apart from the others of its dynamic_particles model"
-                              : "has another boundary model than dynamic_particles") +
-                     "; on several MPI ranks one dynamic_particles model must hold every wall particle, in one range");
-  first_ = first;
-  count_ = end - first;
+  // My rows among the owned ones, then among the halo ones: one run each (ranks.cpp).
+  ranges_.clear();
+  count_ = 0;
+  for (const auto [from, to] : {std::pair{std::size_t{0}, s.owned_size()}, std::pair{s.owned_size(), s.size()}}) {
+    std::size_t first = from;
+    while (first < to && !mine(first)) ++first;
+    std::size_t end = first;
+    while (end < to && mine(end)) ++end;
+    for (std::size_t i = end; i < to; ++i)
+      if (mine(i))
+        throw RunError("error: wall '" + world.bodies[body[i]].name + "' has particles apart from the others of its "
+                       "dynamic_particles model among this rank's " + (from == 0 ? "owned" : "halo") + " rows");
+    if (end == first) continue;
+    if (!ranges_.empty() && ranges_.back().first + ranges_.back().count == first)
+      ranges_.back().count += end - first;  // the owned and the halo rows meet
+    else
+      ranges_.push_back({first, end - first, count_});
+    count_ += end - first;
+  }
+  first_ = ranges_.empty() ? 0 : ranges_.front().first;
   find_ghosts(world);
   lay_out(world);
 }
 
 std::span<Vec3> DynamicParticles::viscous_velocity(World& world) const {
   if (!mirror_) return {};
-  return world.boundary.vector(wall_viscous_velocity.name).subspan(first_, count_);
+  return world.boundary.vector(wall_viscous_velocity.name);
 }
 
-void DynamicParticles::refresh_set(World& world) {
-  WallFields w(world.boundary, first_, count_);
-  set_.cells = &cells_;
-  set_.position = w.x;
-  set_.fields = w.neighbours();
-  set_.fields.inv_density = inv_rho_.data();
-  set_.viscous_velocity = mirror_ ? viscous_velocity(world).data() : w.v.data();
+// A wall set per range of rows: the stage's fluid-wall passes read each.
+void DynamicParticles::refresh_sets(World& world) {
+  sets_.resize(ranges_.size());
+  const std::span<Vec3> viscous = viscous_velocity(world);
+  for (std::size_t k = 0; k < ranges_.size(); ++k) {
+    const RowRange& r = ranges_[k];
+    WallFields w(world.boundary, r.first, r.count);
+    sph::WallSet& set = sets_[k];
+    set.cells = &cells_[k];
+    set.position = w.x;
+    set.fields = w.neighbours();
+    set.fields.inv_density = inv_rho_.data() + r.offset;
+    set.viscous_velocity = mirror_ ? viscous.data() + r.first : w.v.data();
+  }
 }
 
 // Wall pressure extrapolated from the fluid around each wall particle
 // (Adami et al. 2012): p_b = sum_f W_bf (p_f + rho_f g . (x_b - x_f)) / sum_f W_bf,
 // then rho_b = rho(p_b) from the wall material's EOS, never below rho0.
+// At the start, before any rank shares the particles out: one range.
 void DynamicParticles::initial_density(World& world) {
   ParticleStore& fs = world.fluid;
   if (fs.size() == 0) return;
@@ -296,8 +321,10 @@ void DynamicParticles::update_pressure(World& world) {
 }
 
 void DynamicParticles::begin_step(World& world) {
-  WallFields w(world.boundary, first_, count_);
-  std::ranges::copy(w.rho, w.rho_n.begin());
+  for (const RowRange& r : ranges_) {
+    WallFields w(world.boundary, r.first, r.count);
+    std::ranges::copy(w.rho, w.rho_n.begin());
+  }
 }
 
 void DynamicParticles::hold_fluid(World& world, double time) {
@@ -305,7 +332,7 @@ void DynamicParticles::hold_fluid(World& world, double time) {
   const std::size_t n = fluid.owned_size();  // another rank puts back its own particles
   if (n == 0 || count_ == 0) return;
   const auto x = fluid.position();
-  const auto wall_body = world.boundary.body().subspan(first_, count_);
+  const auto wall_body = world.boundary.body();
   near_slot_.resize(n);
   const double reach = crossing_reach_;
   const int* slot_of_body = slot_of_body_.data();
@@ -313,7 +340,10 @@ void DynamicParticles::hold_fluid(World& world, double time) {
 #pragma omp parallel for schedule(static) reduction(+ : near) if (n >= sph::parallel_min)
   for (std::size_t i = 0; i < n; ++i) {
     std::int32_t slot = -1;
-    cells_.for_each_neighbour(x[i], reach, [&](Index b, const Vec3&, double) { slot = slot_of_body[wall_body[b]]; });
+    for (std::size_t k = 0; k < ranges_.size(); ++k) {
+      const std::int32_t* body = wall_body.data() + ranges_[k].first;
+      cells_[k].for_each_neighbour(x[i], reach, [&](Index b, const Vec3&, double) { slot = slot_of_body[body[b]]; });
+    }
     near_slot_[i] = slot;
     near += slot >= 0;
   }
@@ -333,27 +363,28 @@ void DynamicParticles::hold_fluid(World& world, double time) {
 }
 
 void DynamicParticles::refresh_wall_sets(World& world) {
-  if (moves_) cells_.build(world.boundary.position().subspan(first_, count_));  // a restart loads the positions
+  if (moves_) build_cells(world);  // a restart loads the positions
   place_ghosts(world, world.time);
-  refresh_set(world);
+  refresh_sets(world);
 }
 
 std::uint64_t DynamicParticles::fill_wall_state(World& world, const sph::FluidView& fluid) {
-  WallFields w(world.boundary, first_, count_);
-  if (moves_) cells_.build(w.x);  // also right after a restart, which loads the positions
+  if (moves_) build_cells(world);  // also right after a restart, which loads the positions
   const std::uint64_t pairs = method_ == Method::mdbc ? fill_from_ghost_nodes(world, fluid) : fill_continuity(world, fluid);
-  refresh_set(world);
+  refresh_sets(world);
   return pairs;
 }
 
 void DynamicParticles::find_ghosts(World& world) {
   if (method_ != Method::mdbc) return;
-  WallFields w(world.boundary, first_, count_);
   ghost0_.resize(count_);
-  for (std::size_t b = 0; b < count_; ++b) {
-    const Vec3& p = w.x0[b];
-    ghost0_[b] = surface_[slot_of_body_[w.body[b]]](p) * 2.0 - p;
-    ghost_reach_ = std::max(ghost_reach_, norm(ghost0_[b] - p));
+  for (const RowRange& r : ranges_) {
+    WallFields w(world.boundary, r.first, r.count);
+    for (std::size_t b = 0; b < r.count; ++b) {
+      const Vec3& p = w.x0[b];
+      ghost0_[r.offset + b] = surface_[slot_of_body_[w.body[b]]](p) * 2.0 - p;
+      ghost_reach_ = std::max(ghost_reach_, norm(ghost0_[r.offset + b] - p));
+    }
   }
   ghost_ = ghost0_;
   place_ghosts(world, world.time);
@@ -361,55 +392,71 @@ void DynamicParticles::find_ghosts(World& world) {
 
 void DynamicParticles::place_ghosts(World& world, double time) {
   if (!moves_ || method_ != Method::mdbc) return;
-  WallFields w(world.boundary, first_, count_);
-  for (std::size_t b = 0; b < count_; ++b)
-    ghost_[b] = wrap_periodic(world, motion_[slot_of_body_[w.body[b]]].position(ghost0_[b], time));
+  for (const RowRange& r : ranges_) {
+    WallFields w(world.boundary, r.first, r.count);
+    for (std::size_t b = 0; b < r.count; ++b)
+      ghost_[r.offset + b] = wrap_periodic(world, motion_[slot_of_body_[w.body[b]]].position(ghost0_[r.offset + b], time));
+  }
 }
 
 // mDBC: density (then pressure) and the viscous velocity from the ghost nodes.
 // On several ranks for the particles this rank owns; the halo copies' values
 // come from their owners after it.
 std::uint64_t DynamicParticles::fill_from_ghost_nodes(World& world, const sph::FluidView& fluid) {
-  WallFields w(world.boundary, first_, count_);
   const std::size_t owned = owned_count(world);
-  const std::span<const Vec3> x = w.x, v = w.v, ghosts = ghost_;
+  const std::size_t first = ranges_.empty() ? 0 : ranges_.front().first;
   const std::span<Vec3> viscous = viscous_velocity(world);
+  WallFields mine(world.boundary, first, owned);
   const std::uint64_t pairs = sph::extrapolate_from_ghost_nodes(
-      world.dim, {x.first(owned), ghosts.first(owned), v.first(owned)}, fluid, *settings_.kernel, slip_,
-      w.p.first(owned), viscous.empty() ? viscous : viscous.first(owned));
+      world.dim, {mine.x, std::span<const Vec3>(ghost_).first(owned), mine.v}, fluid, *settings_.kernel, slip_,
+      mine.p, viscous.empty() ? viscous : viscous.subspan(first, owned));
   // The wall density from its material's EOS, never below rho0 (as DBC: a wall never pulls the fluid).
   inv_rho_.resize(count_);
-  for (std::size_t b = 0; b < count_; ++b) {
-    const Material& mat = world.materials[w.mat[b]];
-    w.rho[b] = std::max(mat.density, mat.eos->density_at(std::max(0.0, w.p[b])));
-    inv_rho_[b] = 1.0 / w.rho[b];
+  for (const RowRange& r : ranges_) {
+    WallFields w(world.boundary, r.first, r.count);
+    for (std::size_t b = 0; b < r.count; ++b) {
+      const Material& mat = world.materials[w.mat[b]];
+      w.rho[b] = std::max(mat.density, mat.eos->density_at(std::max(0.0, w.p[b])));
+      inv_rho_[r.offset + b] = 1.0 / w.rho[b];
+    }
   }
   update_pressure(world);
   if (world.parallel().ranks() > 1) {
     static const std::string values[] = {wall_density.name, wall_pressure.name, wall_sound_speed.name,
                                          wall_viscous_velocity.name};
     world.parallel().refresh_halo(world.boundary, std::span(values).first(viscous.empty() ? 3 : 4));
-    for (std::size_t b = owned; b < count_; ++b) inv_rho_[b] = 1.0 / w.rho[b];
+    refresh_inverse_density(world);
   }
   return pairs;
 }
 
+void DynamicParticles::refresh_inverse_density(World& world) {
+  inv_rho_.resize(count_);
+  for (const RowRange& r : ranges_) {
+    WallFields w(world.boundary, r.first, r.count);
+    for (std::size_t b = 0; b < r.count; ++b) inv_rho_[r.offset + b] = 1.0 / w.rho[b];
+  }
+}
+
 std::size_t DynamicParticles::owned_count(const World& world) const {
+  if (ranges_.empty()) return 0;
   const std::size_t owned = world.boundary.owned_size();
-  return owned > first_ ? std::min(count_, owned - first_) : 0;
+  const RowRange& r = ranges_.front();
+  return owned > r.first ? std::min(r.count, owned - r.first) : 0;
 }
 
 // DBC: the wall particles' continuity rates (for the ones this rank owns).
 std::uint64_t DynamicParticles::fill_continuity(World& world, const sph::FluidView& fluid) {
-  WallFields w(world.boundary, first_, count_);
   // 1/rho from the current density (also right after a restart, which loads the density only).
-  inv_rho_.resize(count_);
-  for (std::size_t b = 0; b < count_; ++b) inv_rho_[b] = 1.0 / w.rho[b];
+  refresh_inverse_density(world);
+  const std::size_t owned = owned_count(world);
+  const std::size_t first = ranges_.empty() ? 0 : ranges_.front().first;
+  WallFields w(world.boundary, first, owned);
 
   // Continuity of each wall particle with its fluid neighbours and, for the
   // extrapolated no-slip, the mirrored velocity v_b* = 2 v_b - v~_b.
   auto start = [&](Index b) { return WallSums{w.v[b], w.rho[b], 0.0, 0.0, Vec3{}}; };
-  const std::span<Vec3> mirrored = viscous_velocity(world);
+  const std::span<Vec3> mirrored = mirror_ ? viscous_velocity(world).subspan(first, owned) : std::span<Vec3>();
   auto finish = [&](Index b, const WallSums& s) { w.drho[b] = s.drho; };
   auto finish_mirror = [&](Index b, const WallSums& s) {
     w.drho[b] = s.drho;
@@ -420,7 +467,6 @@ std::uint64_t DynamicParticles::fill_continuity(World& world, const sph::FluidVi
   const KernelTable& kernel = *settings_.kernel;
   const sph::Continuity continuity{fluid.neighbours()};
   std::uint64_t pairs = 0;
-  const std::size_t owned = owned_count(world);
   if (mirror_) {
     pairs = sph::pair_pass(owned, wx, *fluid.cells, kernel, sph::other_set, start, finish_mirror,
                            continuity, VelocityShepard{fluid.velocity.data()});
@@ -434,25 +480,27 @@ std::uint64_t DynamicParticles::fill_continuity(World& world, const sph::FluidVi
 }
 
 void DynamicParticles::advance_walls(World& world, double time, double dt) {
-  WallFields w(world.boundary, first_, count_);
   const double* rho0 = rho0_of_material_.data();
-  if (method_ == Method::dbc) {
-#pragma omp parallel for schedule(static) if (count_ >= 4096)
-    for (std::size_t b = 0; b < count_; ++b) {
-      // DualSPHysics: a wall particle never goes below rho0, so walls never pull fluid.
-      w.rho[b] = std::max(rho0[w.mat[b]], w.rho_n[b] + dt * w.drho[b]);
+  for (const RowRange& r : ranges_) {
+    WallFields w(world.boundary, r.first, r.count);
+    if (method_ == Method::dbc) {
+#pragma omp parallel for schedule(static) if (r.count >= 4096)
+      for (std::size_t b = 0; b < r.count; ++b) {
+        // DualSPHysics: a wall particle never goes below rho0, so walls never pull fluid.
+        w.rho[b] = std::max(rho0[w.mat[b]], w.rho_n[b] + dt * w.drho[b]);
+      }
+    }
+    if (moves_) {
+#pragma omp parallel for schedule(static) if (r.count >= 4096)
+      for (std::size_t b = 0; b < r.count; ++b) {
+        const PrescribedMotion& motion = motion_[slot_of_body_[w.body[b]]];
+        // A wall moving along a periodic axis (the lid of a Couette cell) stays in the period.
+        w.x[b] = wrap_periodic(world, motion.position(w.x0[b], time));
+        w.v[b] = motion.velocity(w.x0[b], time);
+      }
     }
   }
   place_ghosts(world, time);
-  if (moves_) {
-#pragma omp parallel for schedule(static) if (count_ >= 4096)
-    for (std::size_t b = 0; b < count_; ++b) {
-      const PrescribedMotion& motion = motion_[slot_of_body_[w.body[b]]];
-      // A wall moving along a periodic axis (the lid of a Couette cell) stays in the period.
-      w.x[b] = wrap_periodic(world, motion.position(w.x0[b], time));
-      w.v[b] = motion.velocity(w.x0[b], time);
-    }
-  }
   update_pressure(world);
 }
 

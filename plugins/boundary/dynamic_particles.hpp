@@ -72,9 +72,7 @@ class DynamicParticles final : public sph::SphBoundary {
   void begin_step(World& world) override;
   std::uint64_t fill_wall_state(World& world, const sph::FluidView& fluid) override;
   void refresh_wall_sets(World& world) override;
-  std::span<const sph::WallSet> wall_sets() const override {
-    return count_ > 0 ? std::span<const sph::WallSet>(&set_, 1) : std::span<const sph::WallSet>();
-  }
+  std::span<const sph::WallSet> wall_sets() const override { return sets_; }
   void advance_walls(World& world, double time, double dt) override;
   void hold_fluid(World& world, double time) override;
   void describe_passes(StagePlan& plan) const override;
@@ -85,22 +83,33 @@ class DynamicParticles final : public sph::SphBoundary {
  private:
   void update_pressure(World& world);
   void initial_density(World& world);
-  void refresh_set(World& world);  // set_ at the store's current arrays
-  void lay_out(World& world);      // what depends on where my particles sit in the store
-  std::span<Vec3> viscous_velocity(World& world) const;  // v_b* of my particles (empty without mirror_)
+  // A run of my rows in world.boundary: all of them on one rank. On several,
+  // the owned rows and the halo rows: one run when they meet, two when the
+  // rows of other wall models lie between.
+  struct RowRange {
+    std::size_t first = 0, count = 0;
+    std::size_t offset = 0;  // its first particle's index among mine (ghost_, inv_rho_)
+  };
+  void refresh_sets(World& world);  // sets_ at the store's current arrays
+  void build_cells(World& world);   // cells_ at my particles' current positions
+  void lay_out(World& world);       // what depends on where my particles sit in the store
+  std::span<Vec3> viscous_velocity(World& world) const;  // v_b* by store row (empty without mirror_)
   // mDBC: each of my particles' ghost node at t = 0 (mirrored through its
   // wall's surface from its position0), then where the wall's motion has it.
   void find_ghosts(World& world);
   void place_ghosts(World& world, double time);  // ghost_ at the walls' prescribed positions
   std::uint64_t fill_continuity(World& world, const sph::FluidView& fluid);
-  // My particles this rank owns: the first of mine (on several MPI ranks the
-  // rest are halo copies, whose rates are not wanted); all of them on one rank.
+  // My particles this rank owns: the first of mine, in ranges_[0] (on several
+  // MPI ranks the rest are halo copies, whose rates are not wanted); all of
+  // them on one rank.
   std::size_t owned_count(const World& world) const;
+  void refresh_inverse_density(World& world);  // inv_rho_ from the store's densities
   std::uint64_t fill_from_ghost_nodes(World& world, const sph::FluidView& fluid);
 
   std::vector<int> bodies_;
   std::vector<std::string> body_names_;
-  std::size_t first_ = 0, count_ = 0;         // my particles in world.boundary
+  std::size_t first_ = 0, count_ = 0;         // my particles in world.boundary: from first_, count_ of them
+  std::vector<RowRange> ranges_;              // ... in these runs of rows (one unless on several ranks)
   std::vector<std::vector<Index>> by_material_;  // wall indices per material, for the EOS calls
   std::vector<double> rho0_of_material_;
   std::vector<PrescribedMotion> motion_;       // per body slot
@@ -112,7 +121,7 @@ class DynamicParticles final : public sph::SphBoundary {
   std::vector<int> slot_of_body_;              // world body index -> slot (-1: not mine)
   bool moves_ = false;
   sph::FluidSettings settings_;
-  NeighbourGrid cells_;
+  std::vector<NeighbourGrid> cells_;  // per range
   std::vector<double> inv_rho_;  // 1/rho of my wall particles, refreshed by every fill_wall_state()
   NoSlip no_slip_ = NoSlip::extrapolated;
   Method method_ = Method::dbc;
@@ -122,7 +131,7 @@ class DynamicParticles final : public sph::SphBoundary {
   bool mirror_ = false;
   std::vector<Vec3> ghost0_, ghost_;  // mDBC ghost nodes of my wall particles at t = 0 and now
   double ghost_reach_ = 0.0;          // mDBC: the farthest a ghost node lies from its wall particle
-  sph::WallSet set_;              // all my wall particles, one set
+  std::vector<sph::WallSet> sets_;  // per range
 };
 
 }  // namespace talus::boundary
