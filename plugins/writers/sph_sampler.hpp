@@ -72,15 +72,6 @@ class SphSampler {
   }
   const KernelTable& kernel() const { return *kernel_; }
 
-  // Shepard average of value(j) over gathered neighbours (NaN if none).
-  template <class Value>
-  static double shepard(const std::vector<Neighbour>& nb, double weight_sum, Value&& value) {
-    if (!(weight_sum > 0.0)) return std::numeric_limits<double>::quiet_NaN();
-    double acc = 0.0;
-    for (const auto& n : nb) acc += n.weight * value(n.j);
-    return acc / weight_sum;
-  }
-
  private:
   const KernelTable* kernel_ = nullptr;
   NeighbourGrid cells_;
