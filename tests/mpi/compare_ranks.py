@@ -55,6 +55,16 @@ def run(cmd, out):
         sys.exit(f"FAIL: {' '.join(cmd)} exited {result.returncode}\n{result.stdout}\n{result.stderr}")
 
 
+def run_arguments(ap, ranks=None):
+    """The arguments every MPI test script takes: TALUS SCENE OUTDIR, and
+    --ranks (the rank counts to run) when `ranks` gives its default."""
+    ap.add_argument("talus")
+    ap.add_argument("scene")
+    ap.add_argument("outdir")
+    if ranks is not None:
+        ap.add_argument("--ranks", type=int, nargs="+", default=ranks)
+
+
 def edited_copy(scene_path, outdir, edit):
     """Writes the scene with edit(scene) applied to OUTDIR/NAME.json and returns
     its path; the scene must then name no file relative to itself."""
@@ -106,10 +116,7 @@ def compare(label, step0, ref, step, got, tol):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("talus")
-    ap.add_argument("scene")
-    ap.add_argument("outdir")
-    ap.add_argument("--ranks", type=int, nargs="+", default=[2])
+    run_arguments(ap, ranks=[2])
     ap.add_argument("--x-tol", type=float, required=True)
     ap.add_argument("--v-tol", type=float, required=True)
     ap.add_argument("--rho-tol", type=float, required=True)

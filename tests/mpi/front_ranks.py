@@ -20,7 +20,7 @@ import sys
 import h5py
 import numpy as np
 
-from compare_ranks import edited_copy, mpirun, run
+from compare_ranks import edited_copy, mpirun, run, run_arguments
 
 
 def fronts(path, axis):
@@ -54,10 +54,7 @@ def largest_difference(ref, got, rel_tol):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("talus")
-    ap.add_argument("scene")
-    ap.add_argument("outdir")
-    ap.add_argument("--ranks", type=int, nargs="+", default=[2, 3, 4])
+    run_arguments(ap, ranks=[2, 3, 4])
     ap.add_argument("--every-steps", type=int, default=200)
     ap.add_argument("--end", type=float, default=None, help="end time, s (default: the scene's)")
     ap.add_argument("--axis", type=int, default=0, choices=(0, 1, 2))

@@ -18,7 +18,7 @@ import shutil
 import subprocess
 import sys
 
-from compare_ranks import compare, last_step, mpirun, run
+from compare_ranks import compare, last_step, mpirun, run, run_arguments
 
 
 def middle_checkpoint(folder, name, last):
@@ -31,9 +31,7 @@ def middle_checkpoint(folder, name, last):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("talus")
-    ap.add_argument("scene")
-    ap.add_argument("outdir")
+    run_arguments(ap)
     ap.add_argument("--from", dest="source", type=int, default=2)
     ap.add_argument("--to", type=int, nargs="+", default=[1, 3])
     ap.add_argument("--x-tol", type=float, required=True)

@@ -18,7 +18,7 @@ import sys
 import h5py
 import numpy as np
 
-from compare_ranks import edited_copy, mpirun, run
+from compare_ranks import edited_copy, mpirun, run, run_arguments
 
 
 def attributes_differ(ref, got, tol):
@@ -98,10 +98,7 @@ def compare_files(ref_path, got_path, tol):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("talus")
-    ap.add_argument("scene")
-    ap.add_argument("outdir")
-    ap.add_argument("--ranks", type=int, nargs="+", default=[2])
+    run_arguments(ap, ranks=[2])
     ap.add_argument("--rel-tol", type=float, default=1e-9)
     ap.add_argument("--abs-tol", type=float, default=1e-12)
     a = ap.parse_args()

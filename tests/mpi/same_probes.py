@@ -18,7 +18,7 @@ import math
 import os
 import sys
 
-from compare_ranks import edited_copy, mpirun, run
+from compare_ranks import edited_copy, mpirun, run, run_arguments
 
 
 def read_probes(path):
@@ -59,10 +59,7 @@ def compare(label, header0, rows0, header, rows, rel, abs_tol):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("talus")
-    ap.add_argument("scene")
-    ap.add_argument("outdir")
-    ap.add_argument("--ranks", type=int, nargs="+", default=[2])
+    run_arguments(ap, ranks=[2])
     ap.add_argument("--steps", type=int, required=True)
     ap.add_argument("--every-steps", type=int, required=True)
     ap.add_argument("--rel-tol", type=float, required=True)
