@@ -13,6 +13,7 @@
 #include "ranks.hpp"
 #include "run_summary.hpp"
 #include "simulation.hpp"
+#include "store_rows.hpp"
 #include "talus/boundary.hpp"
 #include "talus/error.hpp"
 #include "talus/stage.hpp"
@@ -180,11 +181,7 @@ RankFigures Simulation::figures_over_ranks(std::uint64_t own_particle_steps) con
 // (each evaluation refreshes them first); a writer on every rank that reads a
 // particle's neighbours (the probes' wall forces) needs them as their owners have them.
 void Simulation::refresh_halos_for_writers() {
-  for (ParticleStore* store : {&world_.fluid, &world_.boundary}) {
-    std::vector<std::string> fields;
-    for (const FieldInfo& field : store->fields()) fields.push_back(field.name);
-    ranks_->refresh_halo(*store, fields);
-  }
+  for (ParticleStore* store : {&world_.fluid, &world_.boundary}) ranks_->refresh_halo(*store, all_fields(*store));
 }
 
 void Simulation::gather_for_writers() {
