@@ -17,6 +17,27 @@ void ContactSet::resize(std::size_t n) {
   state.resize(n);
 }
 
+void ContactSet::keep(const std::vector<std::uint8_t>& flag) {
+  std::size_t n = 0;
+  for (std::size_t c = 0; c < size(); ++c) {
+    if (!flag[c]) continue;
+    key[n] = key[c];
+    point[n] = point[c];
+    normal[n] = normal[c];
+    velocity[n] = velocity[c];
+    shear[n] = shear[c];
+    force[n] = force[c];
+    gap[n] = gap[c];
+    area[n] = area[c];
+    mass[n] = mass[c];
+    strain_energy[n] = strain_energy[c];
+    dissipated[n] = dissipated[c];
+    state[n] = state[c];
+    ++n;
+  }
+  resize(n);
+}
+
 ContactBatch ContactSet::batch(std::size_t begin, std::size_t end) {
   ContactBatch b;
   b.size = end - begin;

@@ -26,6 +26,8 @@ class ContactSet {
  public:
   std::size_t size() const { return key.size(); }
   void resize(std::size_t n);
+  // Keeps the contacts whose flag is set, in their order.
+  void keep(const std::vector<std::uint8_t>& flag);
 
   // Copies the history (shear spring, state) of every contact of `previous`
   // whose key is also here. A contact whose key is new takes the history of

@@ -41,6 +41,11 @@ ParamSet DdaStage::describe() {
            "sub-steps as needed, with coupling forces held over the host step (coupled runs, coarser fluid step)");
   p.real("contact_margin").unit("m").min(0.0).optional()
       .doc("gap below which a contact is tracked, open, with its history (default 1% of the smallest block radius)");
+  p.choice("joints", {"search", "initial_faces"}).default_value("search")
+      .doc("search: contacts are sought at every step (blocks that move apart and meet again); initial_faces: the "
+           "rigid-block-spring method for tessellated slopes: the joints are the faces that touch when the run "
+           "starts, their springs fixed to both blocks at the corners of the shared polygon, and no contact is "
+           "sought afterwards (vertex and edge contacts are dropped; small displacements only)");
   return p;
 }
 
@@ -48,6 +53,7 @@ DdaStage::DdaStage(const ParamValues& v) : params_(v) {
   safety_ = v.real("safety");
   subcycle_ = v.boolean("subcycle");
   if (v.has("contact_margin")) margin_ = v.real("contact_margin");
+  fixed_joints_ = v.string("joints") == "initial_faces";
 }
 
 void DdaStage::set_contact_model(int body, ContactModel* model) { overrides_.emplace_back(body, model); }
@@ -198,6 +204,10 @@ void DdaStage::pose_blocks(BlockSet& b) {
 }
 
 void DdaStage::detect(const BlockSet& b, bool initial) {
+  if (fixed_joints_ && !initial) {
+    place_fixed_joints(b);
+    return;
+  }
   broad_.find_pairs(box_lo_, box_hi_, dynamic_, pairs_);
   const std::size_t npairs = pairs_.size();
   const std::size_t threads = static_cast<std::size_t>(omp_get_max_threads());
@@ -257,8 +267,10 @@ void DdaStage::detect(const BlockSet& b, bool initial) {
   if (initial)
     for (std::size_t c = 0; c < n; ++c)
       if (contacts_.gap[c] > bond_gap * margin_) contacts_.state[c] &= static_cast<std::uint8_t>(~contact_bonded);
-  model_begin_.assign(models_.size() + 1, n);
-  for (std::size_t c = n; c-- > 0;) model_begin_[contacts_.key[c].model] = c;
+  if (initial && fixed_joints_) fix_joints(b);
+  const std::size_t kept = contacts_.size();
+  model_begin_.assign(models_.size() + 1, kept);
+  for (std::size_t c = kept; c-- > 0;) model_begin_[contacts_.key[c].model] = c;
   for (std::size_t m = models_.size(); m-- > 0;) model_begin_[m] = std::min(model_begin_[m], model_begin_[m + 1]);
 }
 

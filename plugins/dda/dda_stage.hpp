@@ -12,6 +12,10 @@
 //      bodies integrated are the free blocks, except that the blocks of a
 //      clump (the scene's "clump" name) move as one non-convex body, with no
 //      contacts between them (clumps.cpp).
+// With "joints": "initial_faces" (the rigid-block-spring method, Kawai 1978)
+// step 1 runs once: the joints are the face-face contact points that touch
+// when the run starts, each fixed to both blocks (fixed_joints.cpp), and no
+// contact is sought afterwards.
 // Time step (seed eq. 8): dt = safety * 2/w_max * (sqrt(1 + xi^2) - xi), with
 // w_max^2 bounded (Gershgorin) by J_i sum_c k_c (1 + [other block moves]),
 // J_i = 1/m_i + R_i^2/I_min,i, over each block's contact points, and at least
@@ -80,6 +84,7 @@ class DdaStage final : public Stage {
   // (3DEC's ratio).
   double unbalanced_ratio() const { return unbalanced_ratio_; }
   double contact_margin() const { return margin_; }
+  bool fixed_joints() const { return fixed_joints_; }
   const std::vector<ContactModel*>& models() const { return models_; }
   // Per block: the block that carries the state of its rigid body (itself,
   // or the first block of its clump).
@@ -101,6 +106,8 @@ class DdaStage final : public Stage {
   void step(World& world, BlockSet& b, double t, double h);
   void pose_blocks(BlockSet& b);
   void detect(const BlockSet& b, bool initial);
+  void fix_joints(const BlockSet& b);
+  void place_fixed_joints(const BlockSet& b);
   void contact_forces(BlockSet& b, double h);
   void integrate(World& world, BlockSet& b, double t, double h);
   void move_kinematic(BlockSet& b, double t);
@@ -113,6 +120,7 @@ class DdaStage final : public Stage {
   double safety_ = 0.5;
   bool subcycle_ = false;
   double margin_ = -1.0;  // < 0: 1% of the smallest block radius
+  bool fixed_joints_ = false;  // "joints": "initial_faces"
   double local_damping_ = 0.0;
   bool mass_scaling_ = false;
   double unbalanced_ratio_ = 0.0;
@@ -165,6 +173,12 @@ class DdaStage final : public Stage {
   std::vector<double> stiffness_sum_;             // per lead: its body's contact stiffness, for the time step
   std::vector<double> body_omega2_;               // per lead: its body's own bound on omega^2
   std::vector<double> inertia_scale_;             // per block: inertia over the true one (1 without mass scaling)
+  // Fixed joints (per contact of contacts_, in its order): the contact point
+  // in the body frames of a and b, a's face normal in a's body frame, the gap
+  // at the start, and the keys (a restored state must have the same joints).
+  std::vector<Vec3> joint_on_a_, joint_on_b_, joint_normal_;
+  std::vector<double> joint_gap_;
+  std::vector<ContactKey> joint_key_;
 
   BlockEnergy* energy_ = nullptr;  // world.blocks->energy, for checkpoints
   double dt_stable_ = std::numeric_limits<double>::infinity();

@@ -123,6 +123,9 @@ void DdaStage::check_restored(const BlockEnergy& energy) const {
       fail(contact + " joins blocks " + std::to_string(key.a) + " and " + std::to_string(key.b) + "; the scene has " +
            std::to_string(blocks) + " blocks");
     if (k > 0 && key < c.key[k - 1]) fail(contact + " is out of order (contacts are sorted by model and blocks)");
+    if (fixed_joints_ && (n != joint_key_.size() || !(key == joint_key_[k])))
+      fail(contact + " is not one of the scene's fixed joints (\"joints\": \"initial_faces\" keeps the faces that "
+                     "touch at the start)");
     if (!is_finite(c.point[k]) || !is_finite(c.normal[k]) || !is_finite(c.velocity[k]) || !is_finite(c.shear[k]) ||
         !is_finite(c.force[k]) || !std::isfinite(c.gap[k]) || !std::isfinite(c.area[k]) || !std::isfinite(c.mass[k]) ||
         !std::isfinite(c.strain_energy[k]) || !std::isfinite(c.dissipated[k]))

@@ -25,6 +25,9 @@ namespace {
 // the springs take up the weight.
 constexpr double elastic_factor = 1e-6;
 
+// Steps between displacement checks unless the scene or fixed joints say otherwise.
+constexpr std::int64_t default_window = 500;
+
 std::string number(const char* fmt, double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, fmt, v);
@@ -110,12 +113,20 @@ ParamSet StrengthReduction::describe() {
       .doc("give each free body the inertia that brings its stable frequency down to the slowest body's "
            "(3DEC's density scaling for statics), so that small blocks no longer set the step; gravity keeps the "
            "true mass, so equilibria are unchanged");
-  p.integer("window").min(10).default_value(500)
+  p.integer("window").min(10).optional()
       .doc("steps between displacement checks; a displacement that grows three windows running without "
-           "slowing down fails the trial");
+           "slowing down fails the trial (default 500; with fixed joints the steps the gravity-loaded state took "
+           "to settle, at least 500: a tessellation keeps moving for about that long before it settles, and "
+           "shorter windows fail trials that would hold)");
   p.real("displacement_limit").unit("m").greater_than(0.0).optional()
       .doc("a block or monitor moving farther than this from the gravity-loaded state fails the trial "
            "(default 1% of the smallest free block's radius)");
+  p.choice("failure", {"any", "collapse"}).optional()
+      .doc("which criteria fail a trial (all are measured and reported): any: no equilibrium, the displacement "
+           "limit or growth, or a slip path (free blocks held by slipping or open joints only); collapse: no "
+           "equilibrium or the displacement criteria, not the slip path. Default any; collapse with fixed joints "
+           "(dda.joints = initial_faces), because there a block whose joints all yield may still hold: its load "
+           "comes from its neighbours' springs, which relax as it moves");
   p.vector_list("monitors").unit("m").optional()
       .doc("points inside free blocks whose displacement is reported for every trial (the seed's monitoring "
            "points)");
@@ -156,7 +167,7 @@ StrengthReduction::StrengthReduction(const ParamValues& v)
   ratio_limit_ = v.real("ratio_limit");
   damping_ = v.real("damping");
   max_steps_ = v.integer("max_steps");
-  window_ = v.integer("window");
+  if (v.has("window")) window_ = v.integer("window");
   if (v.has("displacement_limit")) displacement_limit_ = v.real("displacement_limit");
   file_ = v.string("file");
   if (v.has("handoff")) {
@@ -199,6 +210,8 @@ void StrengthReduction::setup(World& world) {
     }
     runout_template_ = h.read_file("runout_scene", read_runout_template);
   }
+  const bool collapse = params_.has("failure") ? params_.string("failure") == "collapse" : dda_->fixed_joints();
+  by_slip_path_ = !collapse;
   dda_->set_mass_scaling(params_.boolean("mass_scaling"));
   dda_->setup(world);
   dda_->set_local_damping(damping_);
@@ -340,9 +353,19 @@ TrialResult StrengthReduction::relax(World& world, double factor) {
   r.released_blocks = release.blocks.size();
   r.released_mass = release.mass_fraction;
   r.slip_path = !release.blocks.empty();
+  r.fails = fails(r);
   r.dissipated = b.energy.dissipated - dissipated_before;
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
+}
+
+void StrengthReduction::choose_window() {
+  if (params_.has("window")) return;
+  window_ = dda_->fixed_joints() ? std::max<std::int64_t>(default_window, log_.front().steps) : default_window;
+}
+
+bool StrengthReduction::fails(const TrialResult& r) const {
+  return r.budget || r.displaced || r.growing || (by_slip_path_ && r.slip_path);
 }
 
 void StrengthReduction::restore_loaded_state(World& world) {
@@ -369,6 +392,7 @@ void StrengthReduction::advance(World& world, double /*dt*/) {
     for (Monitor& m : monitors_) m.start = b.to_world(m.block, m.body_point);
     log_.push_back(r);
     loaded_ = true;
+    choose_window();
     return;
   }
   if (!search_.searching()) return;
@@ -446,7 +470,11 @@ void StrengthReduction::load_state(std::string_view bytes) {
     throw InputError("error: checkpoint: it records " + std::to_string(trials) + " strength-reduction trials, more "
                      "than this scene's search takes");
   log_.assign(trials, {});
-  for (TrialResult& t : log_) archive_trial(r, t);
+  for (TrialResult& t : log_) {
+    archive_trial(r, t);
+    t.fails = fails(t);
+  }
+  if (!log_.empty()) choose_window();
   archive_limit_state(r, stable_);
   archive_limit_state(r, failed_);
   std::string dda_state;

@@ -11,6 +11,10 @@
 //                    or its displacement grows window after window without
 //                    slowing down (the seed's jump in monitor displacement);
 //   slip path        free blocks are held by slipping or open joints only.
+// The scene's "failure" says whether the slip path fails a trial; with fixed
+// joints (a tessellated slope) the default leaves the slip path out: a block
+// whose joints all yield may still hold, because its load comes from its
+// neighbours' springs, which relax as it moves.
 //
 // One host step is one trial (the host clock is pseudo-time): progress,
 // writers, checkpoints and SIGINT all act between trials. The per-trial table
@@ -65,6 +69,8 @@ class StrengthReduction final : public Stage {
   void check_start(const World& world) const;
   void locate_monitors(const World& world);
   TrialResult relax(World& world, double factor);
+  bool fails(const TrialResult& r) const;
+  void choose_window();
   double displacement(const BlockSet& b) const;
   void restore_loaded_state(World& world);
   std::vector<std::string> write_handoff(const World& world, const std::string& output_directory) const;
@@ -72,6 +78,7 @@ class StrengthReduction final : public Stage {
   ParamValues params_;
   double tolerance_ = 0.005, ratio_limit_ = 1e-5, damping_ = 0.8, displacement_limit_ = -1.0;
   std::int64_t max_steps_ = 20000, window_ = 500;
+  bool by_slip_path_ = true;  // "failure": "any" (no equilibrium and the displacement criteria always fail a trial)
   std::string file_;
 
   std::unique_ptr<dda::DdaStage> dda_;

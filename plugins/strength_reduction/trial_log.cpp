@@ -15,7 +15,6 @@ std::string number(double v) {
 }  // namespace
 
 std::string outcome(const TrialResult& t) {
-  if (!t.failed()) return "stable";
   std::string s;
   auto add = [&](bool on, const char* what) {
     if (on) s += (s.empty() ? "" : ", ") + std::string(what);
@@ -24,6 +23,7 @@ std::string outcome(const TrialResult& t) {
   add(t.displaced, "displacement limit");
   add(t.growing, "displacement growing");
   add(t.slip_path, "slip path");
+  if (!t.failed()) return s.empty() ? "stable" : "stable (not deciding: " + s + ")";
   return "fails: " + s;
 }
 

@@ -11,7 +11,8 @@ namespace talus::strength_reduction {
 
 struct TrialResult {
   double factor = 0.0;        // the trial F; infinity for the gravity-loaded state
-  // Failure criteria (any one means the slope fails at this F).
+  // Failure criteria, each as measured; the stage's "failure" list says
+  // which of them fail the trial (`fails`).
   bool budget = false;        // the unbalanced-force ratio did not fall below its limit within the step budget
   bool displaced = false;     // a block or monitor moved farther than the displacement limit
   bool growing = false;       // the displacement grew window after window without slowing down
@@ -26,7 +27,9 @@ struct TrialResult {
   double wall_seconds = 0.0;
   std::vector<Vec3> monitors;  // displacement of each monitor point, m
 
-  bool failed() const { return budget || displaced || growing || slip_path; }
+  bool fails = false;
+
+  bool failed() const { return fails; }
 };
 
 // "stable", or "fails: " and the criteria that fired.
