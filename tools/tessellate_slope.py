@@ -1,0 +1,207 @@
+#!/usr/bin/env python3
+"""Writes a strength-reduction scene of a slope cut into blocks, with no slip surface given.
+
+The section (x across the slope, z up) is a slope of height H rising at 1 : --slope-ratio from its toe at x = 0,
+z = 0, with level ground --behind metres behind the crest and, optionally, a foundation layer --depth metres deep
+that reaches --front metres in front of the toe (Griffiths & Lane 1999's depth factor D = 1 + depth / H). The
+section is cut into triangles about --cell metres across and extruded by --width (default: one cell) into
+triangular prisms, the blocks. Every block shares its faces with its neighbours; these faces are the joints
+(Mohr-Coulomb, c, phi, tensile strength c / tan(phi) by default, perfectly plastic), and the scene's DDA keeps
+them as fixed joints ("joints": "initial_faces"): the rigid-block-spring method, in which strength reduction finds
+the critical mechanism among the joints by itself.
+
+The triangles: the wedge under the slope face is one triangle cut into n x n similar triangles (n = H / cell
+rounded); the ground behind the crest and the foundation are rectangles of cells cut along both diagonals (four
+triangles a cell), so that slip may run along either diagonal. Fixed blocks hold the section: a rough base under
+it (a joint as strong as the soil) and smooth walls (no friction, no cohesion: rollers) at its ends.
+
+Joint springs: each contact point (a corner of a shared face) gets --joint-stiffness (Pa/m, normal; shear 0.4 of
+it) times a quarter of the area of a cell-sized face. A small-displacement spring model's collapse load does not
+depend on the springs' stiffness; the verification case checks that it does not here either.
+
+    /usr/bin/python3 tools/tessellate_slope.py --height 10 --slope-ratio 2 --cohesion 10e3 --friction 20 \\
+        --unit-weight 20e3 --cell 2.5 --out slope.json"""
+import argparse
+import json
+import math
+import sys
+
+from block_geometry import oriented, rounded
+
+GRAVITY = 9.81
+
+
+def wedge_triangles(height, run, n):
+    """The triangle under the face, toe (0, 0), heel (run, 0), crest (run, height), cut into n^2 similar ones."""
+    def node(i, j):
+        return (i * run / n, j * height / n)
+    triangles = []
+    for i in range(n):
+        for j in range(i + 1):
+            triangles.append((node(i, j), node(i + 1, j), node(i + 1, j + 1)))
+            if j < i:
+                triangles.append((node(i, j), node(i + 1, j + 1), node(i, j + 1)))
+    return triangles
+
+
+def crossed_cells(xs, zs):
+    """Each cell of the grid xs x zs cut along both diagonals into four triangles about its centre."""
+    triangles = []
+    for i in range(len(xs) - 1):
+        for j in range(len(zs) - 1):
+            a, b = (xs[i], zs[j]), (xs[i + 1], zs[j])
+            c, d = (xs[i + 1], zs[j + 1]), (xs[i], zs[j + 1])
+            m = (0.5 * (xs[i] + xs[i + 1]), 0.5 * (zs[j] + zs[j + 1]))
+            triangles += [(a, b, m), (b, c, m), (c, d, m), (d, a, m)]
+    return triangles
+
+
+def spaced(lo, hi, cell):
+    """Nodes from lo to hi, about cell apart (at least one interval)."""
+    n = max(1, round((hi - lo) / cell))
+    return [lo + (hi - lo) * k / n for k in range(n + 1)]
+
+
+def section_triangles(args):
+    """The section's triangles, conforming: every shared side is a whole side of both triangles."""
+    h, run, cell = args.height, args.slope_ratio * args.height, args.cell
+    n = max(1, round(h / cell))
+    triangles = wedge_triangles(h, run, n)
+    rows = [h * j / n for j in range(n + 1)]
+    behind = spaced(run, run + args.behind, cell) if args.behind > 0 else [run]
+    triangles += crossed_cells(behind, rows)
+    if args.depth > 0:
+        front = spaced(-args.front, 0.0, cell) if args.front > 0 else [0.0]
+        columns = front[:-1] + [run * i / n for i in range(n)] + behind
+        triangles += crossed_cells(columns, spaced(-args.depth, 0.0, cell))
+    return triangles, n
+
+
+def prism(triangle, width):
+    """A triangle of the section (x, z) extruded along y from 0 to width."""
+    vertices = [(x, 0.0, z) for x, z in triangle] + [(x, width, z) for x, z in triangle]
+    faces = [[0, 1, 2], [3, 4, 5], [0, 1, 4, 3], [1, 2, 5, 4], [2, 0, 3, 5]]
+    return vertices, oriented(vertices, faces)
+
+
+def box(lo, hi):
+    vertices = [(x, y, z) for z in (lo[2], hi[2]) for y in (lo[1], hi[1]) for x in (lo[0], hi[0])]
+    faces = [[0, 1, 3, 2], [4, 5, 7, 6], [0, 1, 5, 4], [2, 3, 7, 6], [0, 2, 6, 4], [1, 3, 7, 5]]
+    return vertices, oriented(vertices, faces)
+
+
+def joint(cohesion, friction, tensile, point_stiffness):
+    return {"type": "mohr_coulomb", "normal_stiffness": float("%.6g" % point_stiffness), "friction_angle": friction,
+            "cohesion": cohesion, "tensile_strength": tensile, "damping_ratio": 0.0, "shear_softening": "none"}
+
+
+def block(name, shape, density, contact, fixed=False):
+    vertices, faces = shape
+    body = {"name": name, "kind": "block", "density": density,
+            "shape": {"polyhedron": {"vertices": rounded(vertices), "faces": faces}}, "contact": contact}
+    if fixed:
+        body["fixed"] = True
+    return body
+
+
+def scene(args):
+    triangles, n = section_triangles(args)
+    width = args.width if args.width else args.cell
+    density = args.unit_weight / GRAVITY
+    tensile = args.tensile_strength if args.tensile_strength is not None else (
+        args.cohesion / math.tan(math.radians(args.friction)) if args.friction > 0 else args.cohesion)
+    point_stiffness = args.joint_stiffness * args.cell * width / 4.0
+    soil = joint(args.cohesion, args.friction, tensile, point_stiffness)
+    smooth = joint(0.0, 0.0, 0.0, point_stiffness)
+    run = args.slope_ratio * args.height
+    x_lo = -args.front if args.depth > 0 else 0.0
+    x_hi = run + args.behind
+    z_lo, thick = -args.depth, max(args.cell, 0.1 * args.height)
+    # Fixed blocks first: a contact takes the model of the block listed first.
+    bodies = [block("base", box((x_lo - thick, 0.0, z_lo - thick), (x_hi + thick, width, z_lo)), density, soil, True),
+              block("back_wall", box((x_hi, 0.0, z_lo), (x_hi + thick, width, args.height)), density, smooth, True)]
+    if args.depth > 0 and args.front > 0:
+        bodies.append(block("front_wall", box((x_lo - thick, 0.0, z_lo), (x_lo, width, 0.0)), density, smooth, True))
+    for k, t in enumerate(triangles):
+        bodies.append(block("b%d" % k, prism(t, width), density, soil))
+    area = sum(0.5 * abs((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])) for a, b, c in triangles)
+    crest = [round(run + 0.25 * args.cell, 6), round(0.5 * width, 6), round(args.height - 0.1 * args.cell, 6)]
+    stage = {"stage": "strength_reduction", "dda": {"joints": "initial_faces"}, "bracket": args.bracket,
+             "tolerance": args.tolerance, "max_steps": args.max_steps or max(20000, 5000 * n),
+             "displacement_limit": args.displacement_limit or 0.02 * args.height, "monitors": [crest]}
+    description = (
+        "A slope %g m high at 1:%g (toe at x = 0), level ground %g m behind the crest%s, cut into %d triangular "
+        "prisms about %g m across (%d cells up the face) and %g m wide, on a rough fixed base between smooth walls; "
+        "joints c = %g Pa, phi = %g deg, tensile strength %.4g Pa, perfectly plastic, kept as fixed joints "
+        "(rigid-block-spring method); unit weight %g N/m^3. Written by tools/tessellate_slope.py."
+        % (args.height, args.slope_ratio, args.behind,
+           ", a foundation %g m deep reaching %g m in front of the toe" % (args.depth, args.front) if args.depth else "",
+           len(triangles), args.cell, n, width, args.cohesion, args.friction, tensile, args.unit_weight))
+    lo = [x_lo - 2 * thick, -width, z_lo - 2 * thick]
+    hi = [x_hi + 2 * thick, 2 * width, args.height + 2 * thick]
+    return {
+        "talus": 1,
+        "description": description,
+        "domain": {"dim": 3, "min": [round(v, 3) for v in lo], "max": [round(v, 3) for v in hi]},
+        "gravity": [0, 0, -GRAVITY],
+        "bodies": bodies,
+        "pipeline": [stage],
+        "time": {"end": 1.0},
+        "outputs": [{"type": "hdf5", "every": 1.0}],
+    }, len(triangles), area
+
+
+def parse(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--height", type=float, default=10.0, help="slope height H, m (default 10)")
+    ap.add_argument("--slope-ratio", type=float, default=2.0, help="horizontal run per unit rise (default 2)")
+    ap.add_argument("--behind", type=float, default=None, help="level ground behind the crest, m (default 1.2 H)")
+    ap.add_argument("--depth", type=float, default=0.0, help="foundation layer under the toe, m (default 0)")
+    ap.add_argument("--front", type=float, default=None,
+                    help="foundation reach in front of the toe, m (default 1.2 H with a foundation)")
+    ap.add_argument("--cell", type=float, required=True, help="block size, m (the mesh parameter)")
+    ap.add_argument("--width", type=float, help="extrusion width, m (default: one cell)")
+    ap.add_argument("--unit-weight", type=float, default=20e3, help="soil unit weight, N/m^3 (default 20e3)")
+    ap.add_argument("--cohesion", type=float, default=10e3, help="joint cohesion, Pa (default 10e3)")
+    ap.add_argument("--friction", type=float, default=20.0, help="joint friction angle, deg (default 20)")
+    ap.add_argument("--tensile-strength", type=float, help="joint tensile strength, Pa (default c / tan(phi))")
+    ap.add_argument("--joint-stiffness", type=float, default=1e8,
+                    help="joint normal stiffness per unit area, Pa/m (default 1e8)")
+    ap.add_argument("--bracket", type=float, nargs=2, default=[0.5, 3.0], help="factor bracket (default 0.5 3)")
+    ap.add_argument("--tolerance", type=float, default=0.005, help="factor tolerance (default 0.005)")
+    ap.add_argument("--max-steps", type=int,
+                    help="step budget of a trial (default 5000 per cell up the face, at least 20000: relaxation "
+                         "takes longer the more blocks a disturbance crosses)")
+    ap.add_argument("--displacement-limit", type=float,
+                    help="displacement that fails a trial, m (default 2%% of the height: far beyond the elastic "
+                         "displacements, so that trials fail by collapse, and the criterion does not depend on the "
+                         "block size or the springs)")
+    ap.add_argument("--out", required=True, help="scene file to write")
+    args = ap.parse_args(argv)
+    if args.behind is None:
+        args.behind = 1.2 * args.height
+    if args.front is None:
+        args.front = 1.2 * args.height if args.depth > 0 else 0.0
+    for name in ("height", "slope_ratio", "cell", "unit_weight", "joint_stiffness"):
+        if not getattr(args, name) > 0:
+            ap.error("--%s must be > 0" % name.replace("_", "-"))
+    if args.behind < 0 or args.depth < 0 or args.front < 0 or (args.width is not None and args.width <= 0):
+        ap.error("--behind, --depth and --front must be >= 0 and --width > 0")
+    if args.cell > args.height:
+        ap.error("--cell must not exceed --height")
+    if args.cohesion < 0 or not 0 <= args.friction < 90:
+        ap.error("--cohesion must be >= 0 and --friction in [0, 90)")
+    return args
+
+
+def main():
+    args = parse()
+    s, blocks, area = scene(args)
+    with open(args.out, "w") as f:
+        json.dump(s, f, indent=1)
+        f.write("\n")
+    print("wrote %s: %d blocks over %.1f m^2 of section" % (args.out, blocks, area))
+
+
+if __name__ == "__main__":
+    sys.exit(main())
