@@ -167,7 +167,7 @@ StrengthReduction::StrengthReduction(const ParamValues& v)
   ratio_limit_ = v.real("ratio_limit");
   damping_ = v.real("damping");
   max_steps_ = v.integer("max_steps");
-  if (v.has("window")) window_ = v.integer("window");
+  window_ = v.has("window") ? v.integer("window") : default_window;
   if (v.has("displacement_limit")) displacement_limit_ = v.real("displacement_limit");
   file_ = v.string("file");
   if (v.has("handoff")) {

@@ -77,7 +77,7 @@ class StrengthReduction final : public Stage {
 
   ParamValues params_;
   double tolerance_ = 0.005, ratio_limit_ = 1e-5, damping_ = 0.8, displacement_limit_ = -1.0;
-  std::int64_t max_steps_ = 20000, window_ = 500;
+  std::int64_t max_steps_ = 20000, window_ = 0;
   bool by_slip_path_ = true;  // "failure": "any" (no equilibrium and the displacement criteria always fail a trial)
   std::string file_;
 
