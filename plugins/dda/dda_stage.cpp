@@ -250,9 +250,7 @@ void DdaStage::detect(const BlockSet& b, bool initial) {
     contacts_.normal[c] = cp.normal;
     contacts_.gap[c] = cp.gap;
     contacts_.area[c] = cp.area;
-    const std::uint32_t la = lead_[f.a], lb = lead_[f.b];
-    const double inverse_sum = inverse_mass_[la] / inertia_scale_[la] + inverse_mass_[lb] / inertia_scale_[lb];
-    contacts_.mass[c] = 1.0 / (inverse_sum * cp.manifold_size);
+    contacts_.mass[c] = 1.0 / (inverse_mass_sum(f.a, f.b) * cp.manifold_size);
     contacts_.velocity[c] = b.velocity_at(f.b, cp.point) - b.velocity_at(f.a, cp.point);
   }
   contacts_.inherit(

@@ -107,6 +107,11 @@ class DdaStage final : public Stage {
   void pose_blocks(BlockSet& b);
   void detect(const BlockSet& b, bool initial);
   void fix_joints(const BlockSet& b);
+  // 1/m_a + 1/m_b of the rigid bodies of blocks a and b, with their inertia scales.
+  double inverse_mass_sum(std::uint32_t a, std::uint32_t b) const {
+    const std::uint32_t la = lead_[a], lb = lead_[b];
+    return inverse_mass_[la] / inertia_scale_[la] + inverse_mass_[lb] / inertia_scale_[lb];
+  }
   void place_fixed_joints(const BlockSet& b);
   void contact_forces(BlockSet& b, double h);
   void integrate(World& world, BlockSet& b, double t, double h);
@@ -175,9 +180,10 @@ class DdaStage final : public Stage {
   std::vector<double> inertia_scale_;             // per block: inertia over the true one (1 without mass scaling)
   // Fixed joints (per contact of contacts_, in its order): the contact point
   // in the body frames of a and b, a's face normal in a's body frame, the gap
-  // at the start, and the keys (a restored state must have the same joints).
+  // at the start, its manifold's size (the effective mass for damping), and
+  // the keys (a restored state must have the same joints).
   std::vector<Vec3> joint_on_a_, joint_on_b_, joint_normal_;
-  std::vector<double> joint_gap_;
+  std::vector<double> joint_gap_, joint_manifold_;  // joint_manifold_: points in the joint's manifold
   std::vector<ContactKey> joint_key_;
 
   BlockEnergy* energy_ = nullptr;  // world.blocks->energy, for checkpoints

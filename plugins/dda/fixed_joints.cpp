@@ -30,6 +30,7 @@ void DdaStage::fix_joints(const BlockSet& b) {
   joint_on_b_.resize(n);
   joint_normal_.resize(n);
   joint_gap_.resize(n);
+  joint_manifold_.resize(n);
   joint_key_ = contacts_.key;
   for (std::size_t c = 0; c < n; ++c) {
     const ContactKey& k = contacts_.key[c];
@@ -38,6 +39,7 @@ void DdaStage::fix_joints(const BlockSet& b) {
     joint_on_b_[c] = rotate_inverse(b.orientation[k.b], p - b.position[k.b]);
     joint_normal_[c] = rotate_inverse(b.orientation[k.a], contacts_.normal[c]);
     joint_gap_[c] = contacts_.gap[c];
+    joint_manifold_[c] = 1.0 / (contacts_.mass[c] * inverse_mass_sum(k.a, k.b));
   }
 }
 
@@ -53,6 +55,7 @@ void DdaStage::place_fixed_joints(const BlockSet& b) {
     contacts_.normal[c] = normal;
     contacts_.gap[c] = joint_gap_[c] + dot(on_b - on_a, normal);
     contacts_.velocity[c] = b.velocity_at(k.b, on_b) - b.velocity_at(k.a, on_a);
+    contacts_.mass[c] = 1.0 / (inverse_mass_sum(k.a, k.b) * joint_manifold_[c]);  // the inertia scales change
   }
 }
 
