@@ -3,38 +3,16 @@
 namespace talus::dda {
 
 void ContactSet::resize(std::size_t n) {
-  key.resize(n);
-  point.resize(n);
-  normal.resize(n);
-  velocity.resize(n);
-  shear.resize(n);
-  force.resize(n);
-  gap.resize(n);
-  area.resize(n);
-  mass.resize(n);
-  strain_energy.resize(n);
-  dissipated.resize(n);
-  state.resize(n);
+  for_each_column([n](auto& column) { column.resize(n); });
 }
 
 void ContactSet::keep(const std::vector<std::uint8_t>& flag) {
   std::size_t n = 0;
-  for (std::size_t c = 0; c < size(); ++c) {
-    if (!flag[c]) continue;
-    key[n] = key[c];
-    point[n] = point[c];
-    normal[n] = normal[c];
-    velocity[n] = velocity[c];
-    shear[n] = shear[c];
-    force[n] = force[c];
-    gap[n] = gap[c];
-    area[n] = area[c];
-    mass[n] = mass[c];
-    strain_energy[n] = strain_energy[c];
-    dissipated[n] = dissipated[c];
-    state[n] = state[c];
-    ++n;
-  }
+  for (std::size_t c = 0; c < size(); ++c)
+    if (flag[c]) {
+      for_each_column([c, n](auto& column) { column[n] = column[c]; });
+      ++n;
+    }
   resize(n);
 }
 

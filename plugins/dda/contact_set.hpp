@@ -87,6 +87,12 @@ class ContactSet {
   std::vector<std::uint8_t> state;
 
  private:
+  template <class F>
+  void for_each_column(F&& f) {
+    f(key), f(point), f(normal), f(velocity), f(shear), f(force);
+    f(gap), f(area), f(mass), f(strain_energy), f(dissipated), f(state);
+  }
+
   std::vector<std::uint8_t> matched_;     // scratch of inherit()
   std::vector<std::size_t> unmatched_;
 };

@@ -7,8 +7,6 @@
 // block and a's face normal, so the springs see the relative displacement of
 // the two blocks on a fixed joint plane that turns with a.
 
-#include <cmath>
-
 #include "dda_stage.hpp"
 
 namespace talus::dda {
