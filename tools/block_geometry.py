@@ -1,4 +1,5 @@
 """Small geometry helpers for the tools that write block scenes (convex polyhedra as JSON)."""
+import json
 import math
 
 
@@ -57,3 +58,10 @@ def volume(vertices, faces):
         for k in range(1, len(f) - 1):
             total += dot(a, cross(vertices[f[k]], vertices[f[k + 1]]))
     return total / 6.0
+
+
+def write_scene(path, scene):
+    """A scene file as the shipped block scenes are written (one-space indent, final newline)."""
+    with open(path, "w") as f:
+        json.dump(scene, f, indent=1)
+        f.write("\n")

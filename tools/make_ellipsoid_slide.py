@@ -24,12 +24,11 @@ would give way first.
 
 tools/make_spherical_cap.py writes the seed's spherical cap with this construction."""
 import argparse
-import json
 import math
 import os
 import sys
 
-from block_geometry import add, cross, dot, oriented, polygon_area, rounded, sub, unit, volume
+from block_geometry import add, cross, dot, oriented, polygon_area, rounded, sub, unit, volume, write_scene
 
 
 
@@ -261,9 +260,7 @@ def parse(argv=None):
 def main():
     args = parse()
     s, block_volume, exact = scene(args)
-    with open(args.out, "w") as f:
-        json.dump(s, f, indent=1)
-        f.write("\n")
+    write_scene(args.out, s)
     print("wrote %s: %d base blocks and one sliding block of %.1f m^3 (smooth cap %.1f m^3, %+.2f %%)"
           % (args.out, len(s["bodies"]) - 1, block_volume, exact, 100.0 * (block_volume / exact - 1.0)))
 

@@ -16,10 +16,10 @@ stiffness of 1e9 Pa/m per unit area (tools/make_ellipsoid_slide.py builds it).
     /usr/bin/python3 tools/make_spherical_cap.py --rings 6 --segments 24 --out /tmp/cap.json
 """
 import argparse
-import json
 import math
 import os
 
+from block_geometry import write_scene
 from make_ellipsoid_slide import Ellipsoid, slide_bodies
 
 R = 40.0
@@ -70,9 +70,7 @@ def main():
     args = ap.parse_args()
     if args.rings < 1 or args.segments < 3:
         ap.error("need at least 1 ring and 3 segments")
-    with open(args.out, "w") as f:
-        json.dump(scene(args.rings, args.segments, args.base_depth), f, indent=1)
-        f.write("\n")
+    write_scene(args.out, scene(args.rings, args.segments, args.base_depth))
     print("wrote %s: %d blocks" % (args.out, args.rings * args.segments + 1))
 
 

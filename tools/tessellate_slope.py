@@ -22,11 +22,10 @@ depend on the springs' stiffness; the verification case checks that it does not 
     /usr/bin/python3 tools/tessellate_slope.py --height 10 --slope-ratio 2 --cohesion 10e3 --friction 20 \\
         --unit-weight 20e3 --cell 2.5 --out slope.json"""
 import argparse
-import json
 import math
 import sys
 
-from block_geometry import oriented, rounded
+from block_geometry import oriented, rounded, write_scene
 
 GRAVITY = 9.81
 
@@ -197,9 +196,7 @@ def parse(argv=None):
 def main():
     args = parse()
     s, blocks, area = scene(args)
-    with open(args.out, "w") as f:
-        json.dump(s, f, indent=1)
-        f.write("\n")
+    write_scene(args.out, s)
     print("wrote %s: %d blocks over %.1f m^2 of section" % (args.out, blocks, area))
 
 
