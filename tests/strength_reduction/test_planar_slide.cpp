@@ -1,6 +1,6 @@
 // Strength reduction on the seed's planar slide through `talus run`: the safety
 // factor against the closed form for three slab thicknesses, cohesion only,
-// friction only and a softer joint (gate 1 %, the issue's); the per-trial
+// friction only, a softer joint and fixed joints (gate 1 %, the issue's); the per-trial
 // table; the same factor for the slope turned and moved far away, and for
 // the slab cut in clumped pieces on bases cut apart; and a restart that
 // continues the search exactly.
@@ -53,6 +53,21 @@ TEST(PlanarSlide, SafetyFactorMatchesTheClosedFormForThreeThicknesses) {
   expect_closed_form({.thickness = 4.330127018922193}, "thin");
   expect_closed_form({.thickness = 8.660254037844386}, "seed");
   expect_closed_form({.thickness = 17.32050807568877}, "thick");
+}
+
+TEST(PlanarSlide, FixedJointsGiveTheClosedFormToo) {
+  // The rigid-block-spring joints (the base face kept from the start, no contact search): the slab's four springs
+  // on the slip plane, failure by collapse only.
+  nlohmann::json scene = planar_slide({});
+  scene["pipeline"][0]["dda"] = {{"joints", "initial_faces"}};
+  const FactorRun r = run_scene(scene, "fixed_joints");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const double exact = closed_form({});
+  std::printf("fixed joints: F_s = %.4f, closed form %.4f (%+.3f %%)\n", r.safety_factor, exact,
+              100.0 * (r.safety_factor / exact - 1.0));
+  EXPECT_NEAR(r.safety_factor / exact, 1.0, 0.01);
+  EXPECT_LE(r.holds, exact);
+  EXPECT_GE(r.fails, exact);
 }
 
 TEST(PlanarSlide, CohesionOnlyAndFrictionOnlyMatchTheirClosedForms) {
