@@ -3,7 +3,9 @@
 two of them) and fill the section exactly, with and without a foundation; every shared face becomes one joint of
 four springs and nothing else is a joint; the safety factor of the Griffiths & Lane slope at the coarse rung does
 not depend on the joints' stiffness (a small-displacement spring model's collapse load must not) and lies near the
-finite-element and Bishop factors; a restarted search continues exactly; bad arguments exit 2.
+finite-element and Bishop factors; tools/bishop_circle.py gives Bishop & Morgenstern's chart factor on the same
+geometry, scales exactly with c and tan(phi) and not with the slope's size; a restarted search continues exactly;
+bad arguments exit 2.
 
     test_tessellate_slope.py TALUS SOURCE_DIR WORK_DIR"""
 import csv
@@ -113,6 +115,28 @@ check(spread <= 0.01, "F_s does not depend on the joint stiffness over two decad
 fs = factors["1e8"]
 check(abs(fs / 1.40 - 1.0) < 0.08, "F_s = %.4f at 2.5 m cells, %+.1f %% from the finite-element 1.40" %
       (fs, 100 * (fs / 1.40 - 1.0)))
+
+# The limit-equilibrium reference on the same geometry (tools/bishop_circle.py): Bishop & Morgenstern's chart value,
+# exact homogeneity (c and tan(phi) times k give F times k), and the same F for a slope ten times the size with the
+# same c / (gamma H).
+import bishop_circle  # noqa: E402
+import math  # noqa: E402
+
+
+def bishop(*argv):
+    return bishop_circle.search(bishop_circle.parse(list(argv)))
+
+
+f_ref, circle = bishop()
+check(abs(f_ref - 1.38) < 0.005, "simplified Bishop over circles: F = %.4f (the chart's 1.38), circle at (%.2f, %.2f) "
+      "R %.2f" % (f_ref, *circle))
+k = 1.5
+f_k = bishop("--cohesion", "15e3", "--friction", str(math.degrees(math.atan(k * math.tan(math.radians(20))))))[0]
+check(abs(f_k / (k * f_ref) - 1.0) < 1e-3, "c and tan(phi) times 1.5: F times %.5f" % (f_k / f_ref))
+f_big = bishop("--height", "100", "--cohesion", "100e3")[0]
+check(abs(f_big / f_ref - 1.0) < 1e-3, "ten times the size at the same c / (gamma H): F = %.4f" % f_big)
+print("     strength reduction on rigid blocks %.4f, simplified Bishop %.4f (%+.1f %%)" % (fs, f_ref,
+                                                                                   100 * (fs / f_ref - 1.0)))
 
 # 3. A restart from the first checkpoint continues the search exactly.
 _, scene = write_scene("restart", "--cell", "2.5")
