@@ -17,13 +17,14 @@ LADDER = [2.5, 1.25, 0.625]
 TOLERANCE = {cell: 0.02 for cell in LADDER}
 ERROR_LABEL = "|F_s / 1.40 - 1|"
 REFERENCE = ("Griffiths & Lane (1999), Geotechnique 49(3), example 1: F = 1.40 by elasto-plastic finite elements with "
-             "strength reduction, 1.38 from Bishop & Morgenstern's charts")
+             "strength reduction, 1.38 from Bishop & Morgenstern's charts; tools/bishop_circle.py gives 1.3776 on the "
+             "scene's own geometry")
 KNOWN_DEVIATION = (
-    "Rigid triangles overestimate the factor: a mechanism must run along the triangles' sides, and joints without "
-    "dilatancy lock where it kinks. Halving the block size keeps the same pattern of sides, so F_s settles (1.489, "
-    "1.479, 1.479 at 2.5, 1.25, 0.625 m) about 5.6 % above the finite-element factor instead of converging to it. "
-    "Deformable blocks (the seed's partitioned finite elements) or a random (Voronoi) tessellation would remove the "
-    "bias; neither exists yet.")
+    "Rigid blocks overestimate the factor: a block's strength is only tested on its faces, so a slip surface must "
+    "follow them, and joints without dilatancy lock where it kinks. F_s settles (1.489, 1.479, 1.479 at 2.5, 1.25, "
+    "0.625 m) about 5.6 % above the finite-element factor instead of converging to it; other patterns do not help "
+    "(both diagonals in the wedge 1.484, nodes moved at random 1.538, at 1.25 m). Deformable blocks (the seed's "
+    "partitioned finite elements), whose strength can be reached on any plane inside them, do not exist yet.")
 
 
 def configure(scene, cell, option):
