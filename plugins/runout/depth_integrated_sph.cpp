@@ -127,9 +127,13 @@ void DepthIntegratedSph::setup(World& world) {
   terrain_ = make_terrain(params_);
   const ParamValues& terrain_values = params_.alternative_values("terrain");
   if (const Grid* dem = terrain_->grid()) {
+    // A domain on the DEM's own edges may differ from them by the rounding of the file's header (10 digits):
+    // that is not reaching beyond.
     const double half = 0.5 * dem->cell;
-    if (world.lo.x < dem->x0 - half || world.hi.x > dem->x_max() + half || world.lo.y < dem->y0 - half ||
-        world.hi.y > dem->y_max() + half)
+    const double slack = 1e-9 * (dem->cell + std::max({std::abs(dem->x0), std::abs(dem->x_max()), std::abs(dem->y0),
+                                                       std::abs(dem->y_max())}));
+    if (world.lo.x < dem->x0 - half - slack || world.hi.x > dem->x_max() + half + slack ||
+        world.lo.y < dem->y0 - half - slack || world.hi.y > dem->y_max() + half + slack)
       throw InputError(where + "the domain [" + std::to_string(world.lo.x) + ", " + std::to_string(world.hi.x) +
                        "] x [" + std::to_string(world.lo.y) + ", " + std::to_string(world.hi.y) +
                        "] reaches beyond the DEM " + terrain_->summary() + "; shrink the domain");

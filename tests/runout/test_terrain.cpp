@@ -253,6 +253,23 @@ TEST(StageSetup, ReleaseOutsideTheDemIsAnError) {
       {"reaches beyond the DEM", "shrink the domain"});
 }
 
+// A domain written from the DEM's own edges (a hand-off's run-out scene) differs from the edges the file's
+// 10-digit header gives by rounding only; that is accepted, a millimetre beyond is not.
+TEST(StageSetup, DomainOnTheDemEdgesUpToRoundingIsAccepted) {
+  const std::string dem = write_file("edge_dem.asc", plane_asc());
+  const double ulp = 4e-15;
+  for (const double beyond : {ulp, 1e-3}) {
+    test::RunoutWorld w({10.0, 20.0 - beyond, 0}, {18.0 + beyond, 26.0, 0}, 0.5);
+    const int m = w.add_material("debris", 2000.0, nullptr);
+    w.fill_box({13.0, 22.0, 0}, {15.0, 24.0, 0}, m);
+    auto make = [&] { w.make_stage(R"({"terrain": {"dem": {"file": ")" + dem + R"("}}, "release_thickness": 1})", 1.0); };
+    if (beyond == ulp)
+      EXPECT_NO_THROW(make());
+    else
+      expect_input_error(make, {"reaches beyond the DEM", "shrink the domain"});
+  }
+}
+
 TEST(StageSetup, ReleaseWhereTheDemHasNoSurfaceIsAnErrorNamingTheFileAndPointer) {
   const std::string dem = write_file("release_hole.asc", plane_asc("-9999"));
   test::RunoutWorld w({10.5, 20.5, 0}, {17.5, 25.5, 0}, 0.5);
