@@ -80,6 +80,13 @@ LimitState capture(const TrialResult& trial, const dda::ContactSet& c, const Blo
   return s;
 }
 
+double release_moved_blocks(LimitState& failed, const LimitState& stable) {
+  double held = 0.0;
+  for (const Vec3& d : stable.displacement) held = std::max(held, norm(d));
+  for (std::size_t i = 0; i < failed.displacement.size(); ++i) failed.released[i] = norm(failed.displacement[i]) > held;
+  return held;
+}
+
 void write_limit_state(const std::string& path, const BlockSet& blocks, const LimitState& stable,
                        const LimitState& failed) {
   const std::string tmp = path + ".tmp";

@@ -26,12 +26,17 @@ struct LimitState {
   std::vector<std::uint32_t> block_a, block_b;
   std::vector<Vec3> position, displacement;
   std::vector<Quaternion> orientation;
-  std::vector<std::uint8_t> released;  // per block: held by open or slipping joints only
+  std::vector<std::uint8_t> released;  // per block: held by open or slipping joints only (or moved_beyond)
 };
 
 // rigid_body: as for released_blocks.
 LimitState capture(const TrialResult& trial, const dda::ContactSet& contacts, const BlockSet& blocks,
                    const std::vector<Vec3>& start_position, const std::vector<std::uint32_t>& rigid_body);
+
+// A collapse needs no slip path: marks as released the blocks of the failing
+// trial that moved farther than any block of the holding one (the two trials
+// at the final bracket), and returns the largest displacement that held.
+double release_moved_blocks(LimitState& failed, const LimitState& stable);
 
 // Groups /stable and /failed (each when present), block names at the root.
 // Written to `path`.tmp and renamed.

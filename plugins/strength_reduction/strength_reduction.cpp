@@ -489,6 +489,10 @@ std::vector<std::string> StrengthReduction::finish(World& world, const std::stri
   for (std::size_t k = 0; k < log_.size(); ++k) table += csv_row(k, log_[k]);
   writers::write_whole_file(csv + ".tmp", table);
   writers::publish(csv + ".tmp", csv, false);
+  // With collapse deciding, the failing mass is the one that moved, whether or not a slip path bounds it.
+  const bool by_motion = !by_slip_path_ && search_.phase() == FactorSearch::Phase::done && failed_.present &&
+                         stable_.present && world.blocks;
+  const double held = by_motion ? release_moved_blocks(failed_, stable_) : 0.0;
   const std::string h5 = writers::join_path(output_directory, file_ + "_limit_state.h5");
   if (world.blocks) write_limit_state(h5, *world.blocks, stable_, failed_);
 
@@ -531,6 +535,23 @@ std::vector<std::string> StrengthReduction::finish(World& world, const std::stri
       lines.push_back("strength_reduction: at F = " + hi + ": " + outcome(f) + "; " + std::to_string(f.slip) + " of " +
                       std::to_string(f.contacts) + " contacts slip, " + std::to_string(f.released_blocks) +
                       " block(s) released (" + number("%.3g", 100.0 * f.released_mass) + " % of the free mass)");
+    }
+    if (by_motion) {
+      const BlockSet& b = *world.blocks;
+      std::size_t moved = 0;
+      double moved_mass = 0.0, free_mass = 0.0;
+      for (std::size_t i = 0; i < b.size(); ++i) {
+        if (b.fixed[i]) continue;
+        free_mass += b.mass[i];
+        if (failed_.released[i]) {
+          ++moved;
+          moved_mass += b.mass[i];
+        }
+      }
+      lines.push_back("strength_reduction: the failing mass: " + std::to_string(moved) + " block(s) (" +
+                      number("%.3g", 100.0 * moved_mass / free_mass) + " % of the free mass) moved farther at F = " +
+                      hi + " than any block at F = " + lo + " (" + number("%.3g", held) + " m); the limit state and "
+                      "the hand-off take them as released");
     }
   } else {
     lines.push_back("strength_reduction: the run ended before the search did (" + cost + "); F_s not found");
