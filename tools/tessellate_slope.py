@@ -23,9 +23,13 @@ depend on the springs' stiffness; the verification case checks that it does not 
         --unit-weight 20e3 --cell 2.5 --out slope.json"""
 import argparse
 import math
+import os
 import sys
 
+import numpy as np
+
 from block_geometry import oriented, rounded, write_scene
+from esri_grid import write_asc
 
 GRAVITY = 9.81
 
@@ -103,6 +107,20 @@ def block(name, shape, density, contact, fixed=False):
     return body
 
 
+def section_dem(args):
+    """The section's ground surface as a DEM for the run-out: the profile, constant across the slope, from
+    --runout-reach in front of the toe to the back wall and the slope's height to either side of the blocks; (values
+    north row first, x0, y0, cell)."""
+    cell, width = args.dem_cell, args.width or args.cell
+    x0 = -(args.front if args.depth > 0 else 0.0) - args.runout_reach
+    x1 = args.slope_ratio * args.height + args.behind
+    y0, y1 = -args.height, width + args.height
+    nx, ny = round((x1 - x0) / cell), round((y1 - y0) / cell)
+    x = x0 + (np.arange(nx) + 0.5) * cell
+    surface = np.clip(x / args.slope_ratio, 0.0, args.height)
+    return np.tile(surface, (ny, 1)), x0, y0, cell
+
+
 def scene(args):
     triangles, n = section_triangles(args)
     width = args.width if args.width else args.cell
@@ -128,6 +146,10 @@ def scene(args):
     stage = {"stage": "strength_reduction", "dda": {"joints": "initial_faces"}, "bracket": args.bracket,
              "tolerance": args.tolerance, "max_steps": args.max_steps or max(20000, 5000 * n),
              "displacement_limit": args.displacement_limit or 0.02 * args.height, "monitors": [crest]}
+    if args.runout_scene:
+        out_dir = os.path.dirname(os.path.abspath(args.out))
+        stage["handoff"] = {"runout_scene": os.path.relpath(os.path.abspath(args.runout_scene), out_dir),
+                            "dem": os.path.relpath(os.path.abspath(args.dem), out_dir)}
     description = (
         "A slope %g m high at 1:%g (toe at x = 0), level ground %g m behind the crest%s, cut into %d triangular "
         "prisms about %g m across (%d cells up the face) and %g m wide, on a rough fixed base between smooth walls; "
@@ -175,8 +197,23 @@ def parse(argv=None):
                     help="displacement that fails a trial, m (default 2%% of the height: far beyond the elastic "
                          "displacements, so that trials fail by collapse, and the criterion does not depend on the "
                          "block size or the springs)")
+    ap.add_argument("--runout-scene", help="run-out scene the strength reduction hands the failing mass to (needs "
+                                           "--dem)")
+    ap.add_argument("--dem", help="ESRI ASCII DEM to write for the hand-off: the section's ground, constant across "
+                                  "the slope")
+    ap.add_argument("--dem-cell", type=float, help="cell of the DEM, m (default a fifth of --cell)")
+    ap.add_argument("--runout-reach", type=float, help="level ground the DEM covers in front of the toe, m "
+                                                       "(default 3 H)")
     ap.add_argument("--out", required=True, help="scene file to write")
     args = ap.parse_args(argv)
+    if bool(args.runout_scene) != bool(args.dem):
+        ap.error("--runout-scene and --dem go together: the run-out needs ground round the release")
+    if args.dem_cell is None:
+        args.dem_cell = args.cell / 5
+    if args.runout_reach is None:
+        args.runout_reach = 3 * args.height
+    if not (args.dem_cell > 0 and args.runout_reach >= 0):
+        ap.error("--dem-cell must be > 0 and --runout-reach >= 0")
     if args.behind is None:
         args.behind = 1.2 * args.height
     if args.front is None:
@@ -197,6 +234,9 @@ def main():
     args = parse()
     s, blocks, area = scene(args)
     write_scene(args.out, s)
+    if args.dem:
+        write_asc(args.dem, *section_dem(args))
+        print("wrote %s: the section's ground for the run-out" % args.dem)
     print("wrote %s: %d blocks over %.1f m^2 of section" % (args.out, blocks, area))
 
 

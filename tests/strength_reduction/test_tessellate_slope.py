@@ -5,7 +5,7 @@ four springs and nothing else is a joint; the safety factor of the Griffiths & L
 not depend on the joints' stiffness (a small-displacement spring model's collapse load must not) and lies near the
 finite-element and Bishop factors; tools/bishop_circle.py gives Bishop & Morgenstern's chart factor on the same
 geometry, scales exactly with c and tan(phi) and not with the slope's size; a restarted search continues exactly;
-the failing mass reaches the hand-off with its volume; bad arguments exit 2.
+the failing mass reaches the hand-off and the run-out over the section's DEM with its volume; bad arguments exit 2.
 
     test_tessellate_slope.py TALUS SOURCE_DIR WORK_DIR"""
 import csv
@@ -157,29 +157,39 @@ def table(directory):
 check(whole.returncode == 0 and resumed.returncode == 0 and fs_whole == fs_resumed and table(out) == table(out2),
       "restarted from %s: F_s %.4f and the trial table as the whole run's" % (points[0] if points else "-", fs_resumed))
 
-# 4. The hand-off from a tessellation: the failing mass is the blocks that moved beyond anything the holding trial
-# showed; its volume reaches the thickness raster within 1 % (the issue's gate).
-with open(os.path.join(source, "share", "scenes", "tessellated_slope.json")) as f:
-    s = json.load(f)
-s["pipeline"][0]["handoff"] = {"runout_scene": os.path.join(source, "share", "scenes", "planar_slide_runout.json"),
-                               "cell": 0.5, "margin": 5.0}
-scene = os.path.join(work, "handoff.json")
-with open(scene, "w") as f:
-    json.dump(s, f)
-ran, out, _ = run(scene, "handoff")
+# 4. The whole chain from a section: the failing mass is the blocks that moved beyond anything the holding trial
+# showed; its volume reaches the thickness raster within 1 % (the issue's gate) and runs out over the section's DEM
+# (written by the tool) with that volume.
+dem = os.path.join(work, "section_dem.asc")
+r, scene = write_scene("chain", "--cell", "2.5", "--dem", dem, "--runout-scene",
+                       os.path.join(source, "share", "scenes", "planar_slide_runout.json"))
+ran, out, _ = run(scene, "chain")
 text = ran.stdout + ran.stderr
 moved = re.search(r"the failing mass: (\d+) block\(s\) \(([0-9.]+) % of the free mass\)", text)
 volume = re.search(r"released volume ([0-9.e+]+) m\^3, in the thickness raster ([0-9.e+]+) m\^3", text)
-check(ran.returncode == 0 and moved is not None and int(moved.group(1)) > 1,
+check(r.returncode == 0 and ran.returncode == 0 and moved is not None and int(moved.group(1)) > 1,
       "the failing mass: %s blocks, %s %% of the free mass" % (moved.group(1) if moved else "-",
                                                                moved.group(2) if moved else "-"))
-check(volume is not None and abs(float(volume.group(2)) / float(volume.group(1)) - 1.0) < 0.01
-      and os.path.exists(os.path.join(out, "strength_reduction_runout.json")),
-      "hand-off: %s m^3 of blocks, %s m^3 in the raster, and the run-out scene written"
-      % (volume.group(1) if volume else "-", volume.group(2) if volume else "-"))
+check(volume is not None and abs(float(volume.group(2)) / float(volume.group(1)) - 1.0) < 0.01,
+      "hand-off: %s m^3 of blocks, %s m^3 in the raster" % (volume.group(1) if volume else "-",
+                                                            volume.group(2) if volume else "-"))
+runout = os.path.join(out, "strength_reduction_runout.json")
+if os.path.exists(runout):
+    with open(runout) as f:
+        s = json.load(f)
+    s["time"]["end"] = 5.0
+    with open(runout, "w") as f:
+        json.dump(s, f)
+flowed, _, _ = run(runout, "chain_runout")
+deposit = re.search(r"deposit volume ([0-9.e+]+) m\^3", flowed.stdout + flowed.stderr)
+check(flowed.returncode == 0 and deposit is not None and volume is not None
+      and abs(float(deposit.group(1)) / float(volume.group(2)) - 1.0) < 1e-6,
+      "the run-out over the section's DEM keeps the raster's volume for 5 s: %s m^3"
+      % (deposit.group(1) if deposit else "-"))
 
 # 5. Bad arguments.
-for bad in (["--cell", "20"], ["--cell", "0"], ["--cell", "2.5", "--friction", "95"]):
+for bad in (["--cell", "20"], ["--cell", "0"], ["--cell", "2.5", "--friction", "95"],
+            ["--cell", "2.5", "--dem", os.path.join(work, "alone.asc")]):
     r, _ = write_scene("bad", *bad)
     check(r.returncode == 2 and "error" in r.stderr, "refused with exit 2: %s" % " ".join(bad))
 
