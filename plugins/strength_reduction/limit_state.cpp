@@ -92,8 +92,7 @@ void write_limit_state(const std::string& path, const BlockSet& blocks, const Li
   const std::string tmp = path + ".tmp";
   {
     h5::QuietErrors quiet;
-    h5::Handle file(h5::check(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), "cannot create", tmp),
-                    H5Fclose);
+    h5::Handle file = h5::create_file(tmp);
     h5::set_attribute(file, "contact_state_codes", "0 open, 1 closed (stick), 2 slip", tmp);
     h5::write_strings(file, "block_name", blocks.name, tmp);
     write_group(file, "stable", stable, tmp);

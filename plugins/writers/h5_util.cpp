@@ -76,6 +76,14 @@ void check(herr_t status, std::string_view what, const std::string& path) {
   if (status < 0) throw RunError("error: " + std::string(what) + " '" + path + "': " + error_text());
 }
 
+Handle create_file(const std::string& path) {
+  Handle access(check(H5Pcreate(H5P_FILE_ACCESS), "cannot set up the creation of", path), H5Pclose);
+  check(H5Pset_libver_bounds(access, H5F_LIBVER_V18, H5F_LIBVER_LATEST), "cannot set up the creation of", path);
+  Handle creation(check(H5Pcreate(H5P_FILE_CREATE), "cannot set up the creation of", path), H5Pclose);
+  check(H5Pset_attr_phase_change(creation, 0, 0), "cannot set up the creation of", path);
+  return {check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, creation, access), "cannot create", path), H5Fclose};
+}
+
 Handle create_group(hid_t parent, const std::string& name, const std::string& path) {
   return {check(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                 "cannot create group " + name + " in", path),

@@ -64,6 +64,11 @@ hid_t check(hid_t id, std::string_view what, const std::string& path);
 void check(herr_t status, std::string_view what, const std::string& path);
 
 // Writing helpers; `path` only names the file in error messages.
+
+// A new file (replacing one there), in the HDF5 1.8 format so that attributes
+// go to dense storage and may pass 64 KiB (a scene of thousands of blocks
+// names them all in one attribute).
+Handle create_file(const std::string& path);
 Handle create_group(hid_t parent, const std::string& name, const std::string& path);
 Handle open_group(hid_t parent, const std::string& name, const std::string& path);
 bool exists(hid_t parent, const std::string& name);

@@ -97,9 +97,7 @@ void H5PartSeries::write_working(const std::function<void(hid_t)>& write) {
       }
     }
     if (!working_exists_) {
-      file = h5::Handle(
-          h5::check(H5Fcreate(working_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), "cannot create", working_),
-          H5Fclose);
+      file = h5::create_file(working_);
       working_exists_ = true;
       working_frames_ = 0;
       root_(file, working_);

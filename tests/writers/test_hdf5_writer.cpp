@@ -179,6 +179,39 @@ TEST(Hdf5Writer, RoundTripIsExact) {
 
 // The XDMF sidecar lists every frame with its time and particle count, and
 // every data path it names exists in the HDF5 file with that many values.
+// A tessellated slope has thousands of blocks, all named in the root's
+// "bodies" attribute: past 64 KiB, which only dense attribute storage holds.
+TEST(Hdf5Writer, NamesThousandsOfBodies) {
+  TempDir dir("h5-bodies");
+  World w;
+  test::fill_lattice(w, 3, {0, 0, 0}, 2, 2, 2, 0.02);
+  const std::size_t n = 6000;
+  for (std::size_t i = 0; i < n; ++i) {
+    Body b;
+    b.name = "tetrahedron_" + std::to_string(i);
+    w.bodies.push_back(b);
+  }
+  auto writer = make_writer("{}");
+  writer->open(test::context_for(dir.str()), w);
+  writer->write(w);
+  writer->close(w);
+  File f(dir.file("scene.h5part"));
+  ASSERT_GE(f.id, 0);
+  hid_t a = H5Aopen(f.id, "bodies", H5P_DEFAULT);
+  ASSERT_GE(a, 0);
+  hid_t space = H5Aget_space(a);
+  EXPECT_EQ(H5Sget_simple_extent_npoints(space), static_cast<hssize_t>(n));
+  std::vector<char*> names(n, nullptr);
+  hid_t type = H5Aget_type(a);
+  ASSERT_GE(H5Aread(a, type, names.data()), 0);
+  EXPECT_STREQ(names[0], "tetrahedron_0");
+  EXPECT_STREQ(names[n - 1], "tetrahedron_5999");
+  H5Dvlen_reclaim(type, space, H5P_DEFAULT, names.data());
+  H5Tclose(type);
+  H5Sclose(space);
+  H5Aclose(a);
+}
+
 TEST(Hdf5Writer, XdmfSidecarDescribesTheFrames) {
   TempDir dir("h5-xdmf");
   World w;
