@@ -89,6 +89,35 @@ void archive_limit_state(Archive& a, LimitState& s) {
   a.vector(s.released);
 }
 
+// The joint strength under most of the slip surface (by contact area between
+// released and holding blocks; a pair uses block a's model; every block has
+// its own model, so joints count as one by their strength) and the share it
+// covers. A tessellation's slip surface also runs along smooth walls, whose
+// joint is not the ground's.
+std::pair<const ReducedJoint*, double> slip_surface_joint(const LimitState& limit,
+                                                          const std::vector<std::uint8_t>& released,
+                                                          const std::vector<int>& body_of_block,
+                                                          const std::vector<const ReducedJoint*>& joint_of_body) {
+  std::vector<std::pair<const ReducedJoint*, double>> area;
+  double total = 0.0;
+  for (std::size_t c = 0; c < limit.block_a.size(); ++c) {
+    if (released[limit.block_a[c]] == released[limit.block_b[c]]) continue;
+    const ReducedJoint* joint = joint_of_body[body_of_block[limit.block_a[c]]];
+    if (!joint) continue;
+    auto it = std::find_if(area.begin(), area.end(), [&](const auto& e) {
+      return e.first->base().cohesion == joint->base().cohesion &&
+             e.first->base().tan_friction == joint->base().tan_friction;
+    });
+    if (it == area.end()) it = area.insert(area.end(), {joint, 0.0});
+    it->second += limit.area[c];
+    total += limit.area[c];
+  }
+  if (area.empty() || !(total > 0.0)) return {nullptr, 0.0};
+  const auto most = std::max_element(area.begin(), area.end(),
+                                     [](const auto& x, const auto& y) { return x.second < y.second; });
+  return {most->first, most->second / total};
+}
+
 }  // namespace
 
 ParamSet StrengthReduction::describe() {
@@ -588,11 +617,7 @@ std::vector<std::string> StrengthReduction::write_handoff(const World& world, co
   }
   const Handoff h = build_handoff(b, loaded_position_, loaded_orientation_, released, stable_, layout,
                                   has_dem_ ? &dem_ : nullptr);
-  // The reduced strength of the slip surface: the joint of its first contact (a pair uses block a's model).
-  const ReducedJoint* joint = nullptr;
-  for (std::size_t c = 0; c < stable_.block_a.size() && !joint; ++c)
-    if (released[stable_.block_a[c]] != released[stable_.block_b[c]])
-      joint = joint_of_body_[b.body[stable_.block_a[c]]];
+  const auto [joint, joint_share] = slip_surface_joint(stable_, released, b.body, joint_of_body_);
   const double fs = search_.safety_factor();
   const double cohesion = joint ? joint->base().cohesion / fs : 0.0;
   const double tan_friction = joint ? joint->base().tan_friction / fs : 0.0;
@@ -613,7 +638,8 @@ std::vector<std::string> StrengthReduction::write_handoff(const World& world, co
           "thickness raster " + number("%.6g", h.raster_volume) + " m^3 (" +
               number("%+.3f", 100.0 * (h.raster_volume / h.failed_volume - 1.0)) + " %); basal shear from " +
               std::to_string(h.slip_contacts) + " slip-surface contacts; c/F_s = " + number("%.4g", cohesion) +
-              " Pa, phi_F = " + number("%.4g", std::atan(tan_friction) * 180.0 / std::numbers::pi) + " deg",
+              " Pa, phi_F = " + number("%.4g", std::atan(tan_friction) * 180.0 / std::numbers::pi) +
+              " deg (the joint under " + number("%.3g", 100.0 * joint_share) + " % of the slip surface's area)",
           "strength_reduction: run-out scene " + scene_path + " (run it: talus run " + scene_path + ")"};
 }
 
