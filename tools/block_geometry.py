@@ -60,6 +60,29 @@ def volume(vertices, faces):
     return total / 6.0
 
 
+def box(lo, hi):
+    """The axis-aligned box from corner lo to corner hi (vertices, outward faces)."""
+    vertices = [(x, y, z) for z in (lo[2], hi[2]) for y in (lo[1], hi[1]) for x in (lo[0], hi[0])]
+    faces = [[0, 1, 3, 2], [4, 5, 7, 6], [0, 1, 5, 4], [2, 3, 7, 6], [0, 2, 6, 4], [1, 3, 7, 5]]
+    return vertices, oriented(vertices, faces)
+
+
+def joint(cohesion, friction, tensile, point_stiffness):
+    """A perfectly plastic Mohr-Coulomb joint model; the stiffness is per contact point (N/m)."""
+    return {"type": "mohr_coulomb", "normal_stiffness": float("%.6g" % point_stiffness), "friction_angle": friction,
+            "cohesion": cohesion, "tensile_strength": tensile, "damping_ratio": 0.0, "shear_softening": "none"}
+
+
+def block(name, shape, density, contact, fixed=False):
+    """A block body of the scene from its shape (vertices, faces)."""
+    vertices, faces = shape
+    body = {"name": name, "kind": "block", "density": density,
+            "shape": {"polyhedron": {"vertices": rounded(vertices), "faces": faces}}, "contact": contact}
+    if fixed:
+        body["fixed"] = True
+    return body
+
+
 def write_scene(path, scene):
     """A scene file as the shipped block scenes are written (one-space indent, final newline)."""
     with open(path, "w") as f:

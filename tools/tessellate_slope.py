@@ -28,7 +28,7 @@ import sys
 
 import numpy as np
 
-from block_geometry import oriented, rounded, write_scene
+from block_geometry import block, box, joint, oriented, write_scene
 from esri_grid import write_asc
 
 GRAVITY = 9.81
@@ -85,26 +85,6 @@ def prism(triangle, width):
     vertices = [(x, 0.0, z) for x, z in triangle] + [(x, width, z) for x, z in triangle]
     faces = [[0, 1, 2], [3, 4, 5], [0, 1, 4, 3], [1, 2, 5, 4], [2, 0, 3, 5]]
     return vertices, oriented(vertices, faces)
-
-
-def box(lo, hi):
-    vertices = [(x, y, z) for z in (lo[2], hi[2]) for y in (lo[1], hi[1]) for x in (lo[0], hi[0])]
-    faces = [[0, 1, 3, 2], [4, 5, 7, 6], [0, 1, 5, 4], [2, 3, 7, 6], [0, 2, 6, 4], [1, 3, 7, 5]]
-    return vertices, oriented(vertices, faces)
-
-
-def joint(cohesion, friction, tensile, point_stiffness):
-    return {"type": "mohr_coulomb", "normal_stiffness": float("%.6g" % point_stiffness), "friction_angle": friction,
-            "cohesion": cohesion, "tensile_strength": tensile, "damping_ratio": 0.0, "shear_softening": "none"}
-
-
-def block(name, shape, density, contact, fixed=False):
-    vertices, faces = shape
-    body = {"name": name, "kind": "block", "density": density,
-            "shape": {"polyhedron": {"vertices": rounded(vertices), "faces": faces}}, "contact": contact}
-    if fixed:
-        body["fixed"] = True
-    return body
 
 
 def section_dem(args):
