@@ -86,18 +86,23 @@ Handoff build_handoff(const BlockSet& b, const std::vector<Vec3>& position, cons
       for (std::size_t i = 0; i < b.size(); ++i)
         if (x + half >= lo[i].x && x - half <= hi[i].x && y + half >= lo[i].y && y - half <= hi[i].y)
           near.push_back(i);
+      // With a DEM, the blocks replace it only under the failed mass (the
+      // slip surface), and never rise above it: a tessellation's fixed walls
+      // and base reach beyond the ground and are not terrain.
       double top = -std::numeric_limits<double>::infinity(), z0 = 0.0, z1 = 0.0;
-      bool covered = false;
+      bool under_failed = false;
       for (const std::size_t i : near) {
         if (!vertical_extent(b.shape[i], position[i], orientation[i], x, y, z0, z1)) continue;
-        covered = true;
-        if (!released[i]) top = std::max(top, z1);
+        if (released[i])
+          under_failed = true;
+        else
+          top = std::max(top, z1);
       }
       double& z = h.terrain.at(col, r);
-      if (covered)
-        z = std::isfinite(top) ? top : (dem ? dem->at(col, r) : nodata);
+      if (dem)
+        z = under_failed && std::isfinite(top) ? std::min(top, dem->at(col, r)) : dem->at(col, r);
       else
-        z = dem ? dem->at(col, r) : nodata;
+        z = std::isfinite(top) ? top : nodata;
 
       double column = 0.0;
       for (int sy = 0; sy < samples; ++sy)

@@ -1,8 +1,9 @@
 // The hand-off of the failed blocks to depth-integrated SPH run-out (seed
 // pfe-ie-depth-integrated-sph-landslide §2.3): three rasters on one grid,
-//   terrain      the top of the blocks that hold, where a block covers the
-//                cell centre, else the surrounding DEM (the slip surface under
-//                the failed mass, the rest of the slope around it);
+//   terrain      with a DEM: the DEM, but under the failed mass the top of
+//                the blocks that hold (the slip surface), never above the
+//                DEM; without one: the top of the blocks that hold wherever
+//                one covers the cell centre;
 //   thickness    the vertical thickness of the failed blocks over each cell,
 //                averaged over 8 x 8 points of the cell (so its volume is the blocks' volume
 //                to a fraction of a cell along the edges);

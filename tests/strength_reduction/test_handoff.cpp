@@ -109,3 +109,34 @@ TEST(Handoff, RastersOfABlockOnAFixedBase) {
   const double d1 = std::hypot(1.25, 0.25), d2 = std::hypot(0.75, 0.25);
   EXPECT_NEAR(h.basal_shear.at(10, 6), (1000.0 / d1 + 2000.0 / d2) / (1.0 / d1 + 1.0 / d2), 1e-9);
 }
+
+TEST(Handoff, WithADemTheBlocksAreTerrainOnlyUnderTheFailedMass) {
+  // A tessellation's frame: a fixed base (top at z = 0) wider than the ground,
+  // a fixed wall rising to z = 6 beside it, a released 4 x 2 x 1 block on the
+  // base; the DEM lies at z = 0.5. Under the block the terrain is the base's
+  // top (the slip surface); over the wall and the bare base it is the DEM.
+  BlockSet b;
+  b.name = {"base", "wall", "block"};
+  b.shape = {box({5.0, 5.0, 1.0}), box({0.5, 5.0, 3.0}), box({2.0, 1.0, 0.5})};
+  b.volume = {200.0, 60.0, 8.0};
+  b.mass = {4e5, 1.2e5, 16000.0};
+  const std::vector<Vec3> position{{0, 0, -1}, {4.25, 0, 3}, {0, 0, 0.5}};
+  const std::vector<Quaternion> orientation(3);
+  const std::vector<std::uint8_t> released{0, 0, 1};
+  LimitState limit;
+  runout::Grid layout;
+  layout.cell = 0.5;
+  layout.x0 = -4.75;
+  layout.y0 = -2.75;
+  layout.resize(20, 12, 0.0);
+  runout::Grid dem = layout;
+  std::fill(dem.value.begin(), dem.value.end(), 0.5);
+  const Handoff h = build_handoff(b, position, orientation, released, limit, layout, &dem);
+  EXPECT_EQ(h.terrain.at(10, 6), 0.0);   // (0.25, 0.25): under the block, the base's top
+  EXPECT_EQ(h.terrain.at(18, 6), 0.5);   // (4.25, 0.25): over the wall, the DEM
+  EXPECT_EQ(h.terrain.at(2, 6), 0.5);    // (-3.75, 0.25): over the bare base, the DEM
+  EXPECT_NEAR(h.raster_volume, 8.0, 1e-9);
+  const Handoff alone = build_handoff(b, position, orientation, released, limit, layout, nullptr);
+  EXPECT_EQ(alone.terrain.at(18, 6), 6.0);  // without a DEM the blocks are all the terrain there is
+  EXPECT_EQ(alone.terrain.at(2, 6), 0.0);
+}

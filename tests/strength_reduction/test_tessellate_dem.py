@@ -3,8 +3,8 @@
 every other face on the base, the window's sides or the ground) and fill the ground's volume exactly; the safety
 factor of a slope does not change when the slope is turned by 90 degrees or moved (the cut is the same), and lies
 above the section's rigid-block factor (fewer, coarser blocks); on the hillside's spur the failing mass reaches the
-hand-off and the run-out over the DEM with its volume and the ground's reduced strength; bad input exits 2 and
-writes nothing.
+hand-off and the run-out over the DEM (the slip surface let into it) with its volume and the ground's reduced
+strength; bad input exits 2 and writes nothing.
 
     test_tessellate_dem.py TALUS SOURCE_DIR WORK_DIR"""
 import json
@@ -21,7 +21,7 @@ import numpy as np
 talus, source, work = sys.argv[1:4]
 sys.path.insert(0, os.path.join(source, "tools"))
 import tessellate_dem as tool  # noqa: E402
-from esri_grid import write_asc  # noqa: E402
+from esri_grid import read_asc, write_asc  # noqa: E402
 
 failures = []
 HILLSIDE = os.path.join(source, "share", "dem", "hillside_valley.asc")
@@ -139,6 +139,19 @@ check(r.returncode == 0 and ran.returncode == 0 and moved is not None and int(mo
 check(volume is not None and abs(float(volume.group(2)) / float(volume.group(1)) - 1.0) < 0.01,
       "hand-off: %s m^3 of blocks, %s m^3 in the raster" % (volume.group(1) if volume else "-",
                                                             volume.group(2) if volume else "-"))
+# The run-out's terrain is the DEM with the slip surface let into it: the fixed walls (which rise above the ground)
+# and the base (which reaches beyond it) are not terrain.
+terrain_path = os.path.join(out, "strength_reduction_terrain.asc")
+if os.path.exists(terrain_path):
+    terrain, ground = read_asc(terrain_path)[0], read_asc(HILLSIDE)[0]
+    thickness = read_asc(os.path.join(out, "strength_reduction_thickness.asc"))[0]
+    scar = thickness > 0.0
+    check(terrain.shape == ground.shape and np.all(terrain <= ground + 1e-6) and np.all(terrain[~scar] == ground[~scar])
+          and float(np.max(ground - terrain)) > 1.0,
+          "the run-out's terrain: the DEM off the failed mass, up to %.2f m under it beneath"
+          % float(np.max(ground - terrain)))
+else:
+    check(False, "the hand-off wrote %s" % terrain_path)
 # The run-out's basal law is the ground's joint reduced by F_s, not the smooth walls' that the slip surface also
 # runs along.
 strength = re.search(r"c/F_s = ([0-9.e+-]+) Pa, phi_F = ([0-9.e+-]+) deg", text)
