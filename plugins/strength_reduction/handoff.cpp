@@ -42,9 +42,45 @@ double inverse_distance(std::span<const Vec3> points, std::span<const double> va
   return weights > 0.0 ? sum / weights : nodata;
 }
 
+std::vector<Vec3> nodal_gradients(std::span<const Vec3> points, std::span<const double> values) {
+  std::vector<Vec3> gradients(points.size(), Vec3{0.0, 0.0, 0.0});
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    double axx = 0.0, axy = 0.0, ayy = 0.0, bx = 0.0, by = 0.0;
+    for (std::size_t j = 0; j < points.size(); ++j) {
+      const double dx = points[j].x - points[k].x, dy = points[j].y - points[k].y, d2 = dx * dx + dy * dy;
+      if (d2 < 1e-24) continue;
+      const double w = 1.0 / d2, df = values[j] - values[k];
+      axx += w * dx * dx;
+      axy += w * dx * dy;
+      ayy += w * dy * dy;
+      bx += w * dx * df;
+      by += w * dy * df;
+    }
+    const double trace = axx + ayy, det = axx * ayy - axy * axy;
+    if (!(trace > 0.0)) continue;  // no neighbour: a constant
+    if (det > 1e-10 * trace * trace)
+      gradients[k] = {(ayy * bx - axy * by) / det, (axx * by - axy * bx) / det, 0.0};
+    else  // collinear neighbours, A = s u u^T and b = t u: the slope t / s along u
+      gradients[k] = {bx / trace, by / trace, 0.0};
+  }
+  return gradients;
+}
+
+double inverse_distance_linear(std::span<const Vec3> points, std::span<const double> values,
+                               std::span<const Vec3> gradients, double x, double y, double nodata) {
+  double weights = 0.0, sum = 0.0;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const double dx = x - points[k].x, dy = y - points[k].y, d = std::hypot(dx, dy);
+    if (d < 1e-12) return values[k];
+    weights += 1.0 / d;
+    sum += (values[k] + gradients[k].x * dx + gradients[k].y * dy) / d;
+  }
+  return weights > 0.0 ? sum / weights : nodata;
+}
+
 Handoff build_handoff(const BlockSet& b, const std::vector<Vec3>& position, const std::vector<Quaternion>& orientation,
                       const std::vector<std::uint8_t>& released, const LimitState& limit, const runout::Grid& layout,
-                      const runout::Grid* dem) {
+                      const runout::Grid* dem, BasalShear interpolation) {
   Handoff h;
   h.terrain = h.thickness = h.basal_shear = layout;
   const double nodata = layout.nodata;
@@ -60,6 +96,8 @@ Handoff build_handoff(const BlockSet& b, const std::vector<Vec3>& position, cons
     stress.push_back(limit.shear_force[c] / limit.area[c]);
   }
   h.slip_contacts = points.size();
+  const bool linear = interpolation == BasalShear::inverse_distance_linear;
+  const std::vector<Vec3> gradients = linear ? nodal_gradients(points, stress) : std::vector<Vec3>{};
 
   double mass = 0.0;
   for (std::size_t i = 0; i < b.size(); ++i)
@@ -115,7 +153,9 @@ Handoff build_handoff(const BlockSet& b, const std::vector<Vec3>& position, cons
       column /= samples * samples;
       h.thickness.at(col, r) = column;
       h.raster_volume += column * cell * cell;
-      if (column > 0.0) h.basal_shear.at(col, r) = inverse_distance(points, stress, x, y, nodata);
+      if (column > 0.0)
+        h.basal_shear.at(col, r) = linear ? inverse_distance_linear(points, stress, gradients, x, y, nodata)
+                                          : inverse_distance(points, stress, x, y, nodata);
     }
   return h;
 }

@@ -33,6 +33,18 @@ bool vertical_extent(const Polyhedron& shape, const Vec3& x, const Quaternion& q
 double inverse_distance(std::span<const Vec3> points, std::span<const double> values, double x, double y,
                         double nodata);
 
+// Shepard's method with linear nodal functions (Franke & Nielson 1980): each
+// point's value extended by the plane through it that fits its neighbours
+// best (weights 1 / d^2 in plan; along their line when they are collinear),
+// then weighted by 1 / d as above. Exact for a field linear in x and y, which
+// plain inverse distance is not; it may leave the nodal range.
+std::vector<Vec3> nodal_gradients(std::span<const Vec3> points, std::span<const double> values);
+double inverse_distance_linear(std::span<const Vec3> points, std::span<const double> values,
+                               std::span<const Vec3> gradients, double x, double y, double nodata);
+
+// How the basal shear is interpolated from the slip-surface contacts.
+enum class BasalShear { inverse_distance, inverse_distance_linear };
+
 struct Handoff {
   runout::Grid terrain, thickness, basal_shear;
   double failed_volume = 0.0;  // of the released blocks, m^3
@@ -44,6 +56,7 @@ struct Handoff {
 // `layout`: the grid (the DEM's, or one over the blocks); `dem` may be null.
 Handoff build_handoff(const BlockSet& blocks, const std::vector<Vec3>& position,
                       const std::vector<Quaternion>& orientation, const std::vector<std::uint8_t>& released,
-                      const LimitState& limit, const runout::Grid& layout, const runout::Grid* dem);
+                      const LimitState& limit, const runout::Grid& layout, const runout::Grid* dem,
+                      BasalShear interpolation = BasalShear::inverse_distance);
 
 }  // namespace talus::strength_reduction

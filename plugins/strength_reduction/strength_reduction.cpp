@@ -170,6 +170,12 @@ ParamSet StrengthReduction::describe() {
       .doc("raster cell, and the run-out particle spacing, without a dem (with one: the DEM's cell)");
   handoff.real("margin").unit("m").min(0.0).default_value(0.0)
       .doc("without a dem: the rasters cover the blocks' plan extent plus this on every side");
+  handoff.choice("basal_shear", {"inverse_distance", "inverse_distance_linear"}).default_value("inverse_distance")
+      .doc("how the limit-state shear of the slip-surface contacts reaches the cells: inverse_distance, weights "
+           "1 / d (seed eq. 30; keeps constants and stays within the contacts' range, but does not reproduce a "
+           "linear field); inverse_distance_linear, the same weights on each contact's value extended by the plane "
+           "that fits its neighbours (Shepard's method with linear nodal functions: exact for a linear field, may "
+           "leave the contacts' range)");
   p.object("handoff", handoff).optional()
       .doc("after the search: terrain (blocks that hold, then the DEM), vertical thickness of the released blocks, "
            "limit-state basal shear by inverse distance (seed eq. 30), and a run-out scene reading them");
@@ -204,6 +210,8 @@ StrengthReduction::StrengthReduction(const ParamValues& v)
     handoff_ = true;
     handoff_margin_ = h.real("margin");
     if (h.has("cell")) handoff_cell_ = h.real("cell");
+    basal_shear_ = h.string("basal_shear") == "inverse_distance_linear" ? BasalShear::inverse_distance_linear
+                                                                         : BasalShear::inverse_distance;
   }
   const auto& b = v.reals("bracket");
   search_ = FactorSearch(b[0], b[1], tolerance_);
@@ -616,7 +624,7 @@ std::vector<std::string> StrengthReduction::write_handoff(const World& world, co
                   std::max(2, static_cast<int>(std::ceil((hi.y - lo.y + 2 * m) / cell - 1e-9))), 0.0);
   }
   const Handoff h = build_handoff(b, loaded_position_, loaded_orientation_, released, stable_, layout,
-                                  has_dem_ ? &dem_ : nullptr);
+                                  has_dem_ ? &dem_ : nullptr, basal_shear_);
   const auto [joint, joint_share] = slip_surface_joint(stable_, released, b.body, joint_of_body_);
   const double fs = search_.safety_factor();
   const double cohesion = joint ? joint->base().cohesion / fs : 0.0;
@@ -637,7 +645,10 @@ std::vector<std::string> StrengthReduction::write_handoff(const World& world, co
   return {"strength_reduction: hand-off: released volume " + number("%.6g", h.failed_volume) + " m^3, in the "
           "thickness raster " + number("%.6g", h.raster_volume) + " m^3 (" +
               number("%+.3f", 100.0 * (h.raster_volume / h.failed_volume - 1.0)) + " %); basal shear from " +
-              std::to_string(h.slip_contacts) + " slip-surface contacts; c/F_s = " + number("%.4g", cohesion) +
+              std::to_string(h.slip_contacts) + " slip-surface contacts (" +
+              (basal_shear_ == BasalShear::inverse_distance_linear ? "inverse distance, linear nodal functions"
+                                                                   : "inverse distance") +
+              "); c/F_s = " + number("%.4g", cohesion) +
               " Pa, phi_F = " + number("%.4g", std::atan(tan_friction) * 180.0 / std::numbers::pi) +
               " deg (the joint under " + number("%.3g", 100.0 * joint_share) + " % of the slip surface's area)",
           "strength_reduction: run-out scene " + scene_path + " (run it: talus run " + scene_path + ")"};

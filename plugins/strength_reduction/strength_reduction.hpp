@@ -28,6 +28,7 @@
 #include "dda_stage.hpp"
 #include "factor_search.hpp"
 #include "grid.hpp"
+#include "handoff.hpp"
 #include "limit_state.hpp"
 #include "reduced_joint.hpp"
 #include "runout_scene.hpp"
@@ -98,6 +99,7 @@ class StrengthReduction final : public Stage {
   // Hand-off to run-out (when "handoff" is given).
   bool handoff_ = false;
   double handoff_cell_ = 0.0, handoff_margin_ = 0.0;
+  BasalShear basal_shear_ = BasalShear::inverse_distance;
   bool has_dem_ = false;
   runout::Grid dem_;
   RunoutTemplate runout_template_;

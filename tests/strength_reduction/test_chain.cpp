@@ -72,6 +72,16 @@ TEST(LandslideChain, TheFailedSlabRunsOutWithItsVolume) {
   EXPECT_NEAR(deposit / raster, 1.0, 1e-5) << ro_summary;
 }
 
+TEST(LandslideChain, TheBasalShearInterpolationIsTheScenes) {
+  nlohmann::json s = chain_scene();
+  s["pipeline"][0]["handoff"]["basal_shear"] = "inverse_distance_linear";
+  const FactorRun sr = run_scene(s, "chain_linear", "");
+  ASSERT_EQ(sr.exit_code, 0) << sr.output;
+  const std::string summary = read_file(sr.directory + ".summary.json");
+  EXPECT_NE(summary.find("basal shear from 4 slip-surface contacts (inverse distance, linear nodal functions)"),
+            std::string::npos) << summary;
+}
+
 TEST(LandslideChain, ABadHandoffIsRefusedBeforeAnythingIsWritten) {
   nlohmann::json s = chain_scene();
   s["pipeline"][0]["handoff"].erase("dem");

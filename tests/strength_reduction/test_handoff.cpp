@@ -73,6 +73,31 @@ TEST(Handoff, InverseDistanceKeepsConstantsNodesAndBounds) {
   EXPECT_EQ(inverse_distance({}, {}, 0.0, 0.0, -1.0), -1.0);
 }
 
+TEST(Handoff, LinearNodalFunctionsReproduceALinearField) {
+  // f = 3 + 2 x - 5 y at scattered points: exact everywhere, where plain
+  // inverse distance is not; along a line of points, exact along the line.
+  const auto f = [](double x, double y) { return 3.0 + 2.0 * x - 5.0 * y; };
+  const std::vector<Vec3> points{{0, 0, 0}, {4, 0, 1}, {0, 3, 2}, {5, 5, 0}, {-2, 1, 0}, {1.5, -2.5, 0}};
+  std::vector<double> values;
+  for (const Vec3& p : points) values.push_back(f(p.x, p.y));
+  const std::vector<Vec3> g = nodal_gradients(points, values);
+  double plain_error = 0.0;
+  for (double x = -3.0; x < 7.0; x += 0.9)
+    for (double y = -3.0; y < 6.0; y += 1.1) {
+      EXPECT_NEAR(inverse_distance_linear(points, values, g, x, y, -1.0), f(x, y), 1e-10) << x << ", " << y;
+      plain_error = std::max(plain_error, std::abs(inverse_distance(points, values, x, y, -1.0) - f(x, y)));
+    }
+  EXPECT_GT(plain_error, 1.0);
+  const std::vector<Vec3> line{{0, 0, 0}, {1, 1, 0}, {3, 3, 0}};
+  const std::vector<double> along{f(0, 0), f(1, 1), f(3, 3)};
+  const std::vector<Vec3> gl = nodal_gradients(line, along);
+  for (double t : {-1.0, 0.5, 2.0, 4.0}) EXPECT_NEAR(inverse_distance_linear(line, along, gl, t, t, -1.0), f(t, t), 1e-10);
+  // One point: its value everywhere; none: nodata.
+  const std::vector<Vec3> one{{1, 1, 0}};
+  EXPECT_DOUBLE_EQ(inverse_distance_linear(one, {{7.0}}, nodal_gradients(one, {{7.0}}), 5.0, -2.0, -1.0), 7.0);
+  EXPECT_EQ(inverse_distance_linear({}, {}, {}, 0.0, 0.0, -1.0), -1.0);
+}
+
 TEST(Handoff, RastersOfABlockOnAFixedBase) {
   // A fixed base (top at z = 0) and a released 4 x 2 x 1 block on it, on a
   // 0.5 m grid: terrain 0 under the block, thickness 1 over its footprint,
@@ -108,6 +133,11 @@ TEST(Handoff, RastersOfABlockOnAFixedBase) {
   // At (0.25, 0.25): 1 kPa at distance d1 from (-1, 0), 2 kPa at d2 from (1, 0).
   const double d1 = std::hypot(1.25, 0.25), d2 = std::hypot(0.75, 0.25);
   EXPECT_NEAR(h.basal_shear.at(10, 6), (1000.0 / d1 + 2000.0 / d2) / (1.0 / d1 + 1.0 / d2), 1e-9);
+  // With linear nodal functions the two contacts' line, 1500 + 500 x Pa, is met exactly.
+  const Handoff linear = build_handoff(b, position, orientation, released, limit, layout, nullptr,
+                                       BasalShear::inverse_distance_linear);
+  EXPECT_NEAR(linear.basal_shear.at(10, 6), 1500.0 + 500.0 * 0.25, 1e-9);
+  EXPECT_NEAR(linear.basal_shear.at(12, 4), 1500.0 + 500.0 * 1.25, 1e-9);
 }
 
 TEST(Handoff, WithADemTheBlocksAreTerrainOnlyUnderTheFailedMass) {
