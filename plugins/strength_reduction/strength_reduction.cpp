@@ -164,8 +164,8 @@ ParamSet StrengthReduction::describe() {
       .doc("a depth_integrated_sph scene (its kernel, Bingham material, time and outputs) that the hand-off fills "
            "with the failed mass, the terrain and the reduced strength and writes as FILE_runout.json");
   handoff.path("dem").optional()
-      .doc("ESRI ASCII DEM of the slope around the blocks: the rasters take its grid and its elevations where no "
-           "block is");
+      .doc("ESRI ASCII DEM of the slope around the blocks: the rasters take its grid, and the terrain its elevations "
+           "except under the failed mass");
   handoff.real("cell").unit("m").greater_than(0.0).optional()
       .doc("raster cell, and the run-out particle spacing, without a dem (with one: the DEM's cell)");
   handoff.real("margin").unit("m").min(0.0).default_value(0.0)
@@ -177,8 +177,9 @@ ParamSet StrengthReduction::describe() {
            "that fits its neighbours (Shepard's method with linear nodal functions: exact for a linear field, may "
            "leave the contacts' range)");
   p.object("handoff", handoff).optional()
-      .doc("after the search: terrain (blocks that hold, then the DEM), vertical thickness of the released blocks, "
-           "limit-state basal shear by inverse distance (seed eq. 30), and a run-out scene reading them");
+      .doc("after the search: terrain (the DEM with the slip surface under the failed mass let into it; without a "
+           "DEM, the blocks that hold), vertical thickness of the released blocks, limit-state basal shear by "
+           "inverse distance (seed eq. 30), and a run-out scene reading them");
   p.string("file").default_value("strength_reduction")
       .doc("name of the per-trial table FILE.csv and the limit state FILE_limit_state.h5 in the output folder");
   check_output_name(p, "file");
