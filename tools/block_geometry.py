@@ -1,6 +1,9 @@
-"""Small geometry helpers for the tools that write block scenes (convex polyhedra as JSON)."""
+"""Helpers for the tools that write block scenes: convex polyhedra, joints and the strength-reduction scene as JSON,
+and the options the tessellation tools share."""
 import json
 import math
+
+GRAVITY = 9.81
 
 
 def add(a, b, s=1.0):
@@ -81,6 +84,48 @@ def block(name, shape, density, contact, fixed=False):
     if fixed:
         body["fixed"] = True
     return body
+
+
+def strength_reduction_scene(description, lo, hi, bodies, stage):
+    """A scene of blocks under gravity in the domain [lo, hi] whose pipeline is one strength_reduction stage."""
+    return {
+        "talus": 1,
+        "description": description,
+        "domain": {"dim": 3, "min": [round(v, 3) for v in lo], "max": [round(v, 3) for v in hi]},
+        "gravity": [0, 0, -GRAVITY],
+        "bodies": bodies,
+        "pipeline": [stage],
+        "time": {"end": 1.0},
+        "outputs": [{"type": "hdf5", "every": 1.0}],
+    }
+
+
+def add_joint_options(ap, cohesion, friction):
+    """The options a tessellation tool shares: the ground's weight, its joints, and the factor search."""
+    ap.add_argument("--unit-weight", type=float, default=20e3, help="unit weight of the ground, N/m^3 (default 20e3)")
+    ap.add_argument("--cohesion", type=float, default=cohesion, help="joint cohesion, Pa (default %g)" % cohesion)
+    ap.add_argument("--friction", type=float, default=friction, help="joint friction angle, deg (default %g)" % friction)
+    ap.add_argument("--tensile-strength", type=float, help="joint tensile strength, Pa (default c / tan(phi))")
+    ap.add_argument("--joint-stiffness", type=float, default=1e8,
+                    help="joint normal stiffness per unit area, Pa/m (default 1e8)")
+    ap.add_argument("--bracket", type=float, nargs=2, default=[0.5, 3.0], help="factor bracket (default 0.5 3)")
+    ap.add_argument("--tolerance", type=float, default=0.005, help="factor tolerance (default 0.005)")
+
+
+def check_joint_options(ap, args):
+    """Refuses (exit 2) what add_joint_options reads and no tessellation can use."""
+    if not (args.unit_weight > 0 and args.joint_stiffness > 0):
+        ap.error("--unit-weight and --joint-stiffness must be > 0")
+    if args.cohesion < 0 or not 0 <= args.friction < 90:
+        ap.error("--cohesion must be >= 0 and --friction in [0, 90)")
+
+
+def tensile_strength(args):
+    """The joints' tensile strength: as given, else the apex of the Mohr-Coulomb envelope c / tan(phi) (c without
+    friction)."""
+    if args.tensile_strength is not None:
+        return args.tensile_strength
+    return args.cohesion / math.tan(math.radians(args.friction)) if args.friction > 0 else args.cohesion
 
 
 def write_scene(path, scene):

@@ -28,7 +28,8 @@ import math
 import os
 import sys
 
-from block_geometry import add, cross, dot, oriented, polygon_area, rounded, sub, unit, volume, write_scene
+from block_geometry import (add, cross, dot, oriented, polygon_area, rounded, strength_reduction_scene, sub, unit, volume,
+                            write_scene)
 
 
 
@@ -206,16 +207,8 @@ def scene(args):
         "tools/make_ellipsoid_slide.py."
         % (*args.ellipsoid, args.azimuth, block_volume, exact, args.density, args.rings * args.segments, args.rings,
            args.segments, args.cohesion, args.friction, args.joint_stiffness, fit, handoff))
-    return {
-        "talus": 1,
-        "description": description,
-        "domain": {"dim": 3, "min": [round(v - pad, 3) for v in lo], "max": [round(v + pad, 3) for v in hi]},
-        "gravity": [0, 0, -9.81],
-        "bodies": bodies,
-        "pipeline": [stage],
-        "time": {"end": 1.0},
-        "outputs": [{"type": "hdf5", "every": 1.0}],
-    }, block_volume, exact
+    return (strength_reduction_scene(description, [v - pad for v in lo], [v + pad for v in hi], bodies, stage),
+            block_volume, exact)
 
 
 def parse(argv=None):

@@ -19,7 +19,7 @@ import argparse
 import math
 import os
 
-from block_geometry import write_scene
+from block_geometry import strength_reduction_scene, write_scene
 from make_ellipsoid_slide import Ellipsoid, slide_bodies
 
 R = 40.0
@@ -47,17 +47,8 @@ def scene(rings, segments, base_depth):
         "landslide rigid, 397 contact pairs); limit equilibrium: simplified Bishop 1.30, 3D Spencer 1.34, simplified "
         "Janbu 1.25, 3D Sarma 1.48. Written by tools/make_spherical_cap.py."
         % (height, volume, rings * segments, rings, segments, base_depth, JOINT_STIFFNESS))
-    return {
-        "talus": 1,
-        "description": description,
-        "domain": {"dim": 3, "min": [-20.0, -50.0, -10.0], "max": [70.0, 50.0, 90.0]},
-        "gravity": [0, 0, -9.81],
-        "bodies": bodies,
-        "pipeline": [{"stage": "strength_reduction", "bracket": [0.5, 4.0], "tolerance": 0.005,
-                      "monitors": [[22.0, 0.0, 18.0]]}],
-        "time": {"end": 1.0},
-        "outputs": [{"type": "hdf5", "every": 1.0}],
-    }
+    stage = {"stage": "strength_reduction", "bracket": [0.5, 4.0], "tolerance": 0.005, "monitors": [[22.0, 0.0, 18.0]]}
+    return strength_reduction_scene(description, [-20.0, -50.0, -10.0], [70.0, 50.0, 90.0], bodies, stage)
 
 
 def main():

@@ -24,15 +24,15 @@ quarter of the face).
         --base -8 --cell 15 --out slope.json"""
 import argparse
 import itertools
-import math
 import os
 import sys
 
 import numpy as np
 
-from block_geometry import block, box, joint, oriented, volume, write_scene
+from block_geometry import (GRAVITY, add_joint_options, block, box, check_joint_options, joint, oriented,
+                            strength_reduction_scene, tensile_strength, volume, write_scene)
 from esri_grid import read_asc, refuse
-from tessellate_slope import GRAVITY, spaced
+from tessellate_slope import spaced
 
 
 class Surface:
@@ -151,8 +151,7 @@ def scene(args):
     top = float(grid.ground.max())
     relief = top - float(grid.ground.min())
     density = args.unit_weight / GRAVITY
-    tensile = args.tensile_strength if args.tensile_strength is not None else (
-        args.cohesion / math.tan(math.radians(args.friction)) if args.friction > 0 else args.cohesion)
+    tensile = tensile_strength(args)
     point_stiffness = args.joint_stiffness * args.cell * args.cell / 12.0
     soil = joint(args.cohesion, args.friction, tensile, point_stiffness)
     smooth = joint(0.0, 0.0, 0.0, point_stiffness)
@@ -195,18 +194,9 @@ def scene(args):
         "by tools/tessellate_dem.py."
         % (os.path.basename(args.dem), x0, x1, y0, y1, grid.base, relief, len(grid.xs) - 1, len(grid.ys) - 1,
            args.cell, grid.nz, tets, total, args.cohesion, args.friction, tensile, args.unit_weight))
-    return {
-        "talus": 1,
-        "description": description,
-        "domain": {"dim": 3, "min": [round(x0 - 2 * thick, 3), round(y0 - 2 * thick, 3),
-                                     round(grid.base - 2 * thick, 3)],
-                   "max": [round(x1 + 2 * thick, 3), round(y1 + 2 * thick, 3), round(wall_top + thick, 3)]},
-        "gravity": [0, 0, -GRAVITY],
-        "bodies": bodies,
-        "pipeline": [stage],
-        "time": {"end": 1.0},
-        "outputs": [{"type": "hdf5", "every": 1.0}],
-    }, tets, total
+    lo = [x0 - 2 * thick, y0 - 2 * thick, grid.base - 2 * thick]
+    hi = [x1 + 2 * thick, y1 + 2 * thick, wall_top + thick]
+    return strength_reduction_scene(description, lo, hi, bodies, stage), tets, total
 
 
 def parse(argv=None):
@@ -220,14 +210,7 @@ def parse(argv=None):
     ap.add_argument("--cell", type=float, required=True, help="column size in plan, m (the mesh parameter)")
     ap.add_argument("--layers", type=int, help="layers from the base to the ground (default: the deepest column "
                                                "over --cell, rounded)")
-    ap.add_argument("--unit-weight", type=float, default=20e3, help="ground unit weight, N/m^3 (default 20e3)")
-    ap.add_argument("--cohesion", type=float, default=30e3, help="joint cohesion, Pa (default 30e3)")
-    ap.add_argument("--friction", type=float, default=30.0, help="joint friction angle, deg (default 30)")
-    ap.add_argument("--tensile-strength", type=float, help="joint tensile strength, Pa (default c / tan(phi))")
-    ap.add_argument("--joint-stiffness", type=float, default=1e8,
-                    help="joint normal stiffness per unit area, Pa/m (default 1e8)")
-    ap.add_argument("--bracket", type=float, nargs=2, default=[0.5, 3.0], help="factor bracket (default 0.5 3)")
-    ap.add_argument("--tolerance", type=float, default=0.005, help="factor tolerance (default 0.005)")
+    add_joint_options(ap, cohesion=30e3, friction=30.0)
     ap.add_argument("--max-steps", type=int,
                     help="step budget of a trial (default 5000 per cell along the grid's longest side, at least "
                          "20000)")
@@ -240,15 +223,13 @@ def parse(argv=None):
     x0, x1, y0, y1 = args.window
     if not (x1 > x0 and y1 > y0):
         ap.error("--window must have X1 > X0 and Y1 > Y0")
-    for name in ("cell", "unit_weight", "joint_stiffness"):
-        if not getattr(args, name) > 0:
-            ap.error("--%s must be > 0" % name.replace("_", "-"))
+    if not args.cell > 0:
+        ap.error("--cell must be > 0")
     if args.cell > min(x1 - x0, y1 - y0):
         ap.error("--cell must not exceed the window's shorter side")
     if args.layers is not None and args.layers < 1:
         ap.error("--layers must be >= 1")
-    if args.cohesion < 0 or not 0 <= args.friction < 90:
-        ap.error("--cohesion must be >= 0 and --friction in [0, 90)")
+    check_joint_options(ap, args)
     return args
 
 

@@ -22,16 +22,15 @@ depend on the springs' stiffness; the verification case checks that it does not 
     /usr/bin/python3 tools/tessellate_slope.py --height 10 --slope-ratio 2 --cohesion 10e3 --friction 20 \\
         --unit-weight 20e3 --cell 2.5 --out slope.json"""
 import argparse
-import math
 import os
 import sys
 
 import numpy as np
 
-from block_geometry import block, box, joint, oriented, write_scene
+from block_geometry import (GRAVITY, add_joint_options, block, box, check_joint_options, joint, oriented,
+                            strength_reduction_scene, tensile_strength, write_scene)
 from esri_grid import write_asc
 
-GRAVITY = 9.81
 
 
 def wedge_triangles(height, run, n):
@@ -105,8 +104,7 @@ def scene(args):
     triangles, n = section_triangles(args)
     width = args.width if args.width else args.cell
     density = args.unit_weight / GRAVITY
-    tensile = args.tensile_strength if args.tensile_strength is not None else (
-        args.cohesion / math.tan(math.radians(args.friction)) if args.friction > 0 else args.cohesion)
+    tensile = tensile_strength(args)
     point_stiffness = args.joint_stiffness * args.cell * width / 4.0
     soil = joint(args.cohesion, args.friction, tensile, point_stiffness)
     smooth = joint(0.0, 0.0, 0.0, point_stiffness)
@@ -140,16 +138,7 @@ def scene(args):
            len(triangles), args.cell, n, width, args.cohesion, args.friction, tensile, args.unit_weight))
     lo = [x_lo - 2 * thick, -width, z_lo - 2 * thick]
     hi = [x_hi + 2 * thick, 2 * width, args.height + 2 * thick]
-    return {
-        "talus": 1,
-        "description": description,
-        "domain": {"dim": 3, "min": [round(v, 3) for v in lo], "max": [round(v, 3) for v in hi]},
-        "gravity": [0, 0, -GRAVITY],
-        "bodies": bodies,
-        "pipeline": [stage],
-        "time": {"end": 1.0},
-        "outputs": [{"type": "hdf5", "every": 1.0}],
-    }, len(triangles), area
+    return strength_reduction_scene(description, lo, hi, bodies, stage), len(triangles), area
 
 
 def parse(argv=None):
@@ -162,14 +151,7 @@ def parse(argv=None):
                     help="foundation reach in front of the toe, m (default 1.2 H with a foundation)")
     ap.add_argument("--cell", type=float, required=True, help="block size, m (the mesh parameter)")
     ap.add_argument("--width", type=float, help="extrusion width, m (default: one cell)")
-    ap.add_argument("--unit-weight", type=float, default=20e3, help="soil unit weight, N/m^3 (default 20e3)")
-    ap.add_argument("--cohesion", type=float, default=10e3, help="joint cohesion, Pa (default 10e3)")
-    ap.add_argument("--friction", type=float, default=20.0, help="joint friction angle, deg (default 20)")
-    ap.add_argument("--tensile-strength", type=float, help="joint tensile strength, Pa (default c / tan(phi))")
-    ap.add_argument("--joint-stiffness", type=float, default=1e8,
-                    help="joint normal stiffness per unit area, Pa/m (default 1e8)")
-    ap.add_argument("--bracket", type=float, nargs=2, default=[0.5, 3.0], help="factor bracket (default 0.5 3)")
-    ap.add_argument("--tolerance", type=float, default=0.005, help="factor tolerance (default 0.005)")
+    add_joint_options(ap, cohesion=10e3, friction=20.0)
     ap.add_argument("--max-steps", type=int,
                     help="step budget of a trial (default 5000 per cell up the face, at least 20000: relaxation "
                          "takes longer the more blocks a disturbance crosses)")
@@ -198,15 +180,14 @@ def parse(argv=None):
         args.behind = 1.2 * args.height
     if args.front is None:
         args.front = 1.2 * args.height if args.depth > 0 else 0.0
-    for name in ("height", "slope_ratio", "cell", "unit_weight", "joint_stiffness"):
+    for name in ("height", "slope_ratio", "cell"):
         if not getattr(args, name) > 0:
             ap.error("--%s must be > 0" % name.replace("_", "-"))
     if args.behind < 0 or args.depth < 0 or args.front < 0 or (args.width is not None and args.width <= 0):
         ap.error("--behind, --depth and --front must be >= 0 and --width > 0")
     if args.cell > args.height:
         ap.error("--cell must not exceed --height")
-    if args.cohesion < 0 or not 0 <= args.friction < 90:
-        ap.error("--cohesion must be >= 0 and --friction in [0, 90)")
+    check_joint_options(ap, args)
     return args
 
 
