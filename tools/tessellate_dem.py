@@ -158,7 +158,7 @@ def scene(args):
     thick = max(args.cell, 0.1 * (top - grid.base))
     wall_top = top + thick
     # Fixed blocks first: a contact takes the model of the block listed first. The walls meet face to face.
-    bodies = [
+    fixed = [
         block("base", box((x0 - thick, y0 - thick, grid.base - thick), (x1 + thick, y1 + thick, grid.base)), density,
               soil, True),
         block("wall_west", box((x0 - thick, y0, grid.base), (x0, y1, wall_top)), density, smooth, True),
@@ -167,6 +167,7 @@ def scene(args):
               True),
         block("wall_north", box((x0 - thick, y1, grid.base), (x1 + thick, y1 + thick, wall_top)), density, smooth,
               True)]
+    bodies = list(fixed)
     total = 0.0
     monitor_cell = steepest_cell(grid) + (grid.nz - 1,)
     monitor = None
@@ -185,7 +186,7 @@ def scene(args):
         out_dir = os.path.dirname(os.path.abspath(args.out))
         stage["handoff"] = {"runout_scene": os.path.relpath(os.path.abspath(args.runout_scene), out_dir),
                             "dem": os.path.relpath(os.path.abspath(args.dem), out_dir)}
-    tets = len(bodies) - 5
+    tets = len(bodies) - len(fixed)
     description = (
         "The ground under %s over x in [%g, %g], y in [%g, %g] from a level base at z = %g up to the DEM (%.4g m of "
         "relief), cut into %d x %d columns about %g m across and %d terrain-following layers, %d tetrahedra "

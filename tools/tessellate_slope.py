@@ -32,7 +32,6 @@ from block_geometry import (GRAVITY, add_joint_options, block, box, check_joint_
 from esri_grid import write_asc
 
 
-
 def wedge_triangles(height, run, n):
     """The triangle under the face, toe (0, 0), heel (run, 0), crest (run, height), cut into n^2 similar ones."""
     def node(i, j):
