@@ -9,11 +9,9 @@ the failing mass reaches the hand-off and the run-out over the section's DEM wit
 
     test_tessellate_slope.py TALUS SOURCE_DIR WORK_DIR"""
 import csv
+import functools
 import json
 import os
-import re
-import shutil
-import subprocess
 import sys
 from collections import Counter
 
@@ -21,28 +19,13 @@ talus, source, work = sys.argv[1:4]
 sys.path.insert(0, os.path.join(source, "tools"))
 import tessellate_slope as tool  # noqa: E402
 
-failures = []
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import tool_runs  # noqa: E402
+from tool_runs import check  # noqa: E402
 
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        failures.append(what)
-
-
-def write_scene(name, *args):
-    path = os.path.join(work, name + ".json")
-    r = subprocess.run([sys.executable, os.path.join(source, "tools", "tessellate_slope.py"), *args, "--out", path],
-                       capture_output=True, text=True)
-    return r, path
-
-
-def run(scene, name, *options):
-    out = os.path.join(work, name)
-    shutil.rmtree(out, ignore_errors=True)
-    r = subprocess.run([talus, "run", scene, "--out", out, *options], capture_output=True, text=True)
-    m = re.search(r"F_s = ([0-9.]+) \(holds at ([0-9.]+), fails at ([0-9.]+)", r.stdout + r.stderr)
-    return r, out, (float(m.group(1)) if m else float("nan"))
+TOOL = os.path.join(source, "tools", "tessellate_slope.py")
+write_scene = functools.partial(tool_runs.write_scene, TOOL, work)
+run = functools.partial(tool_runs.run, talus, work)
 
 
 def trial_rows(out):
@@ -164,34 +147,14 @@ dem = os.path.join(work, "section_dem.asc")
 r, scene = write_scene("chain", "--cell", "2.5", "--dem", dem, "--runout-scene",
                        os.path.join(source, "share", "scenes", "planar_slide_runout.json"))
 ran, out, _ = run(scene, "chain")
-text = ran.stdout + ran.stderr
-moved = re.search(r"the failing mass: (\d+) block\(s\) \(([0-9.]+) % of the free mass\)", text)
-volume = re.search(r"released volume ([0-9.e+]+) m\^3, in the thickness raster ([0-9.e+]+) m\^3", text)
-check(r.returncode == 0 and ran.returncode == 0 and moved is not None and int(moved.group(1)) > 1,
-      "the failing mass: %s blocks, %s %% of the free mass" % (moved.group(1) if moved else "-",
-                                                               moved.group(2) if moved else "-"))
-check(volume is not None and abs(float(volume.group(2)) / float(volume.group(1)) - 1.0) < 0.01,
-      "hand-off: %s m^3 of blocks, %s m^3 in the raster" % (volume.group(1) if volume else "-",
-                                                            volume.group(2) if volume else "-"))
-runout = os.path.join(out, "strength_reduction_runout.json")
-if os.path.exists(runout):
-    with open(runout) as f:
-        s = json.load(f)
-    s["time"]["end"] = 5.0
-    with open(runout, "w") as f:
-        json.dump(s, f)
-flowed, _, _ = run(runout, "chain_runout")
-deposit = re.search(r"deposit volume ([0-9.e+]+) m\^3", flowed.stdout + flowed.stderr)
-check(flowed.returncode == 0 and deposit is not None and volume is not None
-      and abs(float(deposit.group(1)) / float(volume.group(2)) - 1.0) < 1e-6,
-      "the run-out over the section's DEM keeps the raster's volume for 5 s: %s m^3"
-      % (deposit.group(1) if deposit else "-"))
+raster_volume = tool_runs.check_handoff(r, ran)
+tool_runs.check_runout_keeps_volume(talus, work, out, raster_volume, "chain_runout")
 
 # 5. Bad arguments.
 for bad in (["--cell", "20"], ["--cell", "0"], ["--cell", "2.5", "--friction", "95"],
             ["--cell", "2.5", "--dem", os.path.join(work, "alone.asc")]):
-    r, _ = write_scene("bad", *bad)
-    check(r.returncode == 2 and "error" in r.stderr, "refused with exit 2: %s" % " ".join(bad))
+    r, path = write_scene("bad", *bad)
+    check(r.returncode == 2 and "error" in r.stderr and not os.path.exists(path),
+          "refused with exit 2, nothing written: %s" % " ".join(bad))
 
-print("%d failure(s)" % len(failures))
-sys.exit(1 if failures else 0)
+tool_runs.finish()
