@@ -122,7 +122,7 @@ def scene(dim, dp, slope, period, stroke, end):
     normal = (-math.sin(t), math.cos(t))
     a = (toe + 0.5 * dp * normal[0], 0.5 * dp * normal[1])
     b = (crest + 0.02 * math.cos(t) + 0.5 * dp * normal[0], BANK_HEIGHT + 0.02 * math.sin(t) + 0.5 * dp * normal[1])
-    probes = {"type": "probes", "every": 0.02, "gauges": gauges, "gauge_names": names,
+    probes = {"type": "probes", "every": 0.005, "gauges": gauges, "gauge_names": names,
               "bed_gauges": beds, "bed_material": "sediment",
               "runup_line": [point(dim, round(a[0], 4), round(a[1], 4)), point(dim, round(b[0], 4), round(b[1], 4))],
               "runup_material": "seawater", "material_masses": True,
@@ -174,7 +174,8 @@ def main(argv=None):
                         {"pointer": "/outputs/0/waves/slope", "name": "slope", "values": a.slope_study}],
                "measures": [{"name": name, "summary": "/results/probes/" + key} for name, key in (
                    ("H_surf", "surf_height"), ("T", "period"), ("xi", "iribarren"), ("Fn", "froude"),
-                   ("type", "breaker_type"), ("observed", "observed_type"), ("runup", "runup_max"),
+                   ("type", "breaker_type"), ("observed", "observed_type"), ("u_over_c", "kinematic_ratio"),
+                   ("runup", "runup_max"),
                    ("eroded", "bed_eroded_area"))] + [{"name": "wall_s", "summary": "/wall_seconds"}]}
     else:
         doc = scene(a.dim, dp, a.slope, a.period, a.stroke, a.end)

@@ -271,6 +271,11 @@ void ProbesWriter::resolve_columns(const World& world) {
       names_.push_back(g.name + "_air_below");
       units_.push_back("m");
     }
+  for (const auto& g : gauges_)
+    if (g.air) {
+      names_.push_back(g.name + "_surface_u");
+      units_.push_back("m/s");
+    }
   for (const auto& g : bed_gauges_) {
     names_.push_back(g.name + "_bed");
     units_.push_back("m");
@@ -453,6 +458,13 @@ void ProbesWriter::open(const OutputContext& context, const World& world) {
 
 void ProbesWriter::prepare(const World& world) {
   choose_vertical(world);
+  if (waves_) {
+    std::vector<Vec3> at;
+    for (const auto& g : gauges_) at.push_back(g.at);
+    waves_->place(params_.object("waves"), at, vertical_);
+    if (!world.fluid.has("velocity"))
+      params_.fail("waves", "needs the particle field 'velocity' (an SPH stage): the crests' particle speed");
+  }
   wall_bodies_.clear();
   if (given_strings(params_, "wall_forces")) {
     for (const auto& name : params_.strings("wall_forces")) {
@@ -810,6 +822,7 @@ void ProbesWriter::write(const World& world) {
     put(g.elevation);
   }
   put_air_below(world);
+  put_surface_speed(world);
   for (const auto& g : bed_gauges_) {
     const std::span<const double> phi(next, g.samples.size());
     next += g.samples.size();
@@ -862,6 +875,29 @@ void ProbesWriter::put_air_below(const World& world) {
     row_ += format_real(air_below(samples, std::span<const double>(next, samples.size()), vertical_,
                                   gauge_threshold_, min_gap));
     next += samples.size();
+  }
+}
+
+// The fastest surface particle at each surf gauge: the largest velocity
+// component along the waves' direction over the fluid particles within a
+// kernel support of the surface point (NaN where the gauge is dry), the
+// largest over the ranks.
+void ProbesWriter::put_surface_speed(const World& world) {
+  if (!waves_) return;
+  const auto velocity = world.fluid.vector("velocity");
+  const Vec3& along = waves_->direction();
+  for (const auto& g : gauges_) {
+    if (!g.air) continue;
+    double fastest = -std::numeric_limits<double>::infinity();
+    if (!std::isnan(g.elevation)) {
+      Vec3 surface = g.at;
+      surface[vertical_] = g.elevation;
+      sampler_.for_each_neighbour(
+          surface, [&](Index j, const Vec3&, double) { fastest = std::max(fastest, dot(velocity[j], along)); });
+    }
+    fastest = world.parallel().max(fastest);
+    row_ += ',';
+    row_ += format_real(std::isfinite(fastest) ? fastest : std::numeric_limits<double>::quiet_NaN());
   }
 }
 

@@ -68,7 +68,7 @@ class ProbesWriter final : public Writer {
     std::string name;
     Vec3 at;
     bool warned = false;  // its dry line was reported
-    bool air = false;     // also records the air under its surface (a surf gauge of the waves section)
+    bool air = false;     // a surf gauge of the waves section: also records the air under its surface and its surface speed
     double elevation = 0.0;  // of the row being written
     std::vector<Vec3> samples;  // along its line, from the top down (line_samples)
   };
@@ -108,6 +108,7 @@ class ProbesWriter final : public Writer {
   void select_sensor_particles(const World& world);
   double sensor_pressure(const WallSensor& sensor, const World& world, const SphSampler& fluid) const;
   void put_air_below(const World& world);
+  void put_surface_speed(const World& world);
 
   ParamValues params_;
   std::vector<Vec3> points_;

@@ -4,6 +4,7 @@
 // has the documented layout.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -212,7 +213,10 @@ TEST(ProbesWriter, BedGaugesFindOneMaterialsSurfaceAndItsChange) {
 // beside it reads the flat surface and no air. Water to 0.1 m; the tongue from
 // 0.14 to 0.17 m over x < 0.1 m: a 0.04 m gap between the lattice's particle
 // edges (air_below finds it within a few gauge steps of the kernel's reach).
-TEST(ProbesWriter, SurfGaugesFindTheAirUnderAnOverturningCrest) {
+// The waves run along -x (offshore gauge at 0.28 m): the water moves at
+// 0.2 m/s that way, the tongue at 0.5 m/s, one particle at the tongue's foot
+// at 0.9 m/s but more than a kernel support below the tongue's surface.
+TEST(ProbesWriter, SurfGaugesFindTheAirUnderAnOverturningCrestAndItsSpeed) {
   TempDir dir("probes-air");
   World w;
   const double dp = 0.01;
@@ -220,11 +224,15 @@ TEST(ProbesWriter, SurfGaugesFindTheAirUnderAnOverturningCrest) {
   w.hi = {0.3, 0.3, 0};
   w.gravity = {0, -9.81, 0};
   test::fill_lattice(w, 2, w.lo, 30, 10, 1, dp);
+  const std::size_t water = w.fluid.size();
   test::fill_lattice(w, 2, {0, 0.14, 0}, 10, 3, 1, dp);
+  auto velocity = w.fluid.vector("velocity");
+  for (std::size_t i = 0; i < w.fluid.size(); ++i) velocity[i] = {i < water ? -0.2 : -0.5, 0.01, 0};
+  velocity[water - 30 + 4] = {-0.9, 0, 0};  // the top row of the water at x = 0.045, under the tongue
   writers::ProbesWriter writer(params_from_json(writers::ProbesWriter::describe(),
-                                                R"({"gauges": [[0.04, 0], [0.25, 0]], "gauge_names": ["S1", "S2"],
+                                                R"({"gauges": [[0.28, 0], [0.25, 0], [0.04, 0]], "gauge_names": ["OFF", "S2", "S1"],
                                                     "integrals": [],
-                                                    "waves": {"offshore": "S2", "surf": ["S1", "S2"]}})",
+                                                    "waves": {"offshore": "OFF", "surf": ["S2", "S1"]}})",
                                                 2));
   writer.open(test::context_for(dir.str()), w);
   writer.write(w);
@@ -235,6 +243,35 @@ TEST(ProbesWriter, SurfGaugesFindTheAirUnderAnOverturningCrest) {
   // The gap between the surfaces phi = 0.5 finds: 0.14 - 0.10 = 0.04 m.
   EXPECT_NEAR(csv.rows[0][column(csv, "S1_air_below")], 0.04, 0.1 * dp);
   EXPECT_EQ(csv.rows[0][column(csv, "S2_air_below")], 0.0);
+  // The fastest surface particle along -x; the offshore gauge records none.
+  EXPECT_DOUBLE_EQ(csv.rows[0][column(csv, "S1_surface_u")], 0.5);
+  EXPECT_DOUBLE_EQ(csv.rows[0][column(csv, "S2_surface_u")], 0.2);
+  EXPECT_EQ(std::count(csv.header.begin(), csv.header.end(), "OFF_surface_u"), 0);
+}
+
+// The waves' direction runs from the offshore gauge to the first surf gauge,
+// and the surf gauges are listed in the order the waves reach them.
+TEST(ProbesWriter, SurfGaugesMustStandInTheOrderTheWavesReachThem) {
+  World w;
+  w.lo = {0, 0, 0};
+  w.hi = {0.3, 0.3, 0};
+  w.gravity = {0, -9.81, 0};
+  test::fill_lattice(w, 2, w.lo, 30, 10, 1, 0.01);
+  auto refused = [&](const char* json, const std::string& expected) {
+    writers::ProbesWriter writer(params_from_json(writers::ProbesWriter::describe(), json, 2));
+    try {
+      writer.check(w);
+      ADD_FAILURE() << "accepted " << json;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  };
+  refused(R"({"gauges": [[0.05, 0], [0.1, 0], [0.2, 0]], "gauge_names": ["OFF", "S1", "S2"],
+              "waves": {"offshore": "OFF", "surf": ["S2", "S1"]}})",
+          "/waves/surf: 'S1' is not ahead of 'S2' along the waves' direction");
+  refused(R"({"gauges": [[0.05, 0], [0.05, 0.2]], "gauge_names": ["OFF", "S1"],
+              "waves": {"offshore": "OFF", "surf": ["S1"]}})",
+          "/waves/surf: the first surf gauge 'S1' stands on the offshore gauge's vertical line");
 }
 
 // The run-up line's highest wet point: a line rising through a flat surface at

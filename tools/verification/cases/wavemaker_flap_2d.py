@@ -28,4 +28,8 @@ def error(run):
 
 
 def gates(run):
-    return piston.wave_gates(run)
+    # Not gated: the one complete wave at G2 in the window is the flap's first, whose crest particles move about 20 %
+    # faster than the next crest's at the same crest height (start-up), so steady linear theory is no reference.
+    return piston.wave_gates(run) + [
+        ("fastest crest particle at G2 (not gated: the window's one wave is a start-up wave)", True,
+         piston.crest_particle_line(run))]
