@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "crest_kinematics.hpp"
 #include "talus/series_file.hpp"
@@ -58,14 +59,11 @@ void BreakerAnalysis::place(const ParamValues& params, const std::vector<Vec3>& 
                         "the waves' direction runs from the offshore gauge to it");
   direction_ = span / norm(span);
   ahead_.clear();
-  std::string before = offshore_;
   for (const auto& name : surf_) {
-    ahead_.push_back(dot(horizontal(name) - horizontal(before), direction_));
+    ahead_.push_back(dot(horizontal(name) - horizontal(offshore_), direction_));
     if (!(ahead_.back() > 0.0))
-      params.fail("surf", "'" + name + "' is not ahead of '" + before +
-                              "' along the waves' direction (offshore gauge to first surf gauge): list the surf "
-                              "gauges in the order the waves reach them");
-    before = name;
+      params.fail("surf", "'" + name + "' is not ahead of the offshore gauge '" + offshore_ +
+                              "' along the waves' direction (from it to the first surf gauge)");
   }
 }
 
@@ -97,6 +95,8 @@ std::vector<WriterResult> BreakerAnalysis::analyse(const std::string& probes_fil
   const std::size_t count = surf_.size();
   auto elevation = [&](std::size_t k) -> const std::vector<double>& { return series[1 + k]; };  // 0: offshore
   const WaveStatistics offshore = zero_up_crossing(series[0], series[1], from_);
+  const double wavelength = std::isfinite(water_depth_) ? linear_wavelength(offshore.period, water_depth_, g)
+                                                        : g * offshore.period * offshore.period / (2.0 * std::numbers::pi);
   std::vector<WriterResult> results;
   double surf_height = std::numeric_limits<double>::quiet_NaN();
   std::string surf_gauge;
@@ -106,8 +106,11 @@ std::vector<WriterResult> BreakerAnalysis::analyse(const std::string& probes_fil
   std::size_t travelling = 0;
   for (std::size_t k = 0; k < count; ++k) {
     const WaveStatistics s = zero_up_crossing(series[0], elevation(k + 1), from_);
+    // Crests are matched within a period: only a surf gauge within a wavelength of the offshore gauge.
     const CrestKinematics crest =
-        crest_kinematics(series[0], elevation(k), elevation(k + 1), series[2 + 2 * count + k], s, ahead_.at(k), g);
+        ahead_.at(k) < wavelength
+            ? crest_kinematics(series[0], series[1], elevation(k + 1), series[2 + 2 * count + k], s, ahead_[k], g)
+            : CrestKinematics{};
     per_gauge.push_back({surf_[k] + "_height", s.height, {}});
     per_gauge.push_back({surf_[k] + "_period", s.period, {}});
     per_gauge.push_back({surf_[k] + "_kinematic_ratio", crest.ratio, {}});

@@ -30,8 +30,8 @@ class BreakerAnalysis {
   // Where the gauges stand (`at`, in the order of the constructor's `gauges`),
   // with `vertical` the gauges' axis: the waves' direction, horizontal from
   // the offshore gauge to the first surf gauge, and how far each surf gauge is
-  // ahead of the gauge before it (offshore, then the surf gauges in their
-  // order), which must be ahead. Fails on `params` (the waves section).
+  // ahead of the offshore gauge, which it must be. Fails on `params` (the
+  // waves section).
   void place(const ParamValues& params, const std::vector<Vec3>& at, int vertical);
   // Unit, horizontal; once placed.
   const Vec3& direction() const { return direction_; }
@@ -48,7 +48,7 @@ class BreakerAnalysis {
   std::string offshore_;
   std::vector<std::string> surf_;
   Vec3 direction_{};
-  std::vector<double> ahead_;  // per surf gauge: its distance from the gauge before along direction_
+  std::vector<double> ahead_;  // per surf gauge: its distance from the offshore gauge along direction_
   static constexpr double nan_ = std::numeric_limits<double>::quiet_NaN();
   double slope_ = nan_, water_depth_ = nan_, from_ = 0.0;  // NaN: not given
   double kinematic_threshold_ = 1.0;

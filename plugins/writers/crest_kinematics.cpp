@@ -30,7 +30,7 @@ std::size_t highest(std::span<const double> time, std::span<const double> eta, d
 
 }  // namespace
 
-CrestKinematics crest_kinematics(std::span<const double> time, std::span<const double> eta_before,
+CrestKinematics crest_kinematics(std::span<const double> time, std::span<const double> eta_offshore,
                                  std::span<const double> eta_here, std::span<const double> u_here,
                                  const WaveStatistics& here, double distance, double g) {
   constexpr std::size_t none = static_cast<std::size_t>(-1);
@@ -47,10 +47,10 @@ CrestKinematics crest_kinematics(std::span<const double> time, std::span<const d
       if (std::isfinite(eta_here[j])) trough = std::min(trough, eta_here[j]);
     }
     const double from = crest - (end - start), to = crest;
-    const std::size_t b = highest(time, eta_before, from, to);
+    const std::size_t b = highest(time, eta_offshore, from, to);
     if (b == none || b == 0 || b + 1 >= time.size() || time[b - 1] < from || time[b + 1] > to)
       continue;  // the highest sample is at the window's edge: not a crest inside it (or under a sample ahead)
-    const double delay = crest - crest_time(time, eta_before, b);
+    const double delay = crest - crest_time(time, eta_offshore, b);
     if (!(delay > 0.0) || !std::isfinite(u)) continue;
     const double c = distance / delay;
     if (c * c < g * (eta_here[k] - trough)) {

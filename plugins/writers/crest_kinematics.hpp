@@ -4,21 +4,25 @@
 // onset, Saket et al. 2017, J. Fluid Mech. 811).
 //
 // Per wave (zero up-crossing to up-crossing at the gauge):
-//   c  the crest's speed over the stretch from the gauge the wave passed
-//      before: that distance over the delay between the crest times at the
-//      two gauges, each the vertex of a parabola through the highest sample
-//      and its neighbours (a sample's rounding would dominate the delay
-//      between close gauges);
+//   c  the crest's speed over the stretch from the offshore gauge: that
+//      distance over the delay between the crest times at the two gauges,
+//      each the vertex of a parabola through the highest sample and its
+//      neighbours. The long stretch is what makes c a travelling crest's
+//      speed: before a reflecting slope the waves are partly standing, and a
+//      partly standing wave's crest leads or lags the incident crest by up to
+//      asin(K_r) / 2 pi of a period (K_r the reflection coefficient), which
+//      between gauges a few centimetres apart swamps the delay (a steep bank
+//      then shows crests 'slower than their water' that are not breaking).
+//      Over the stretch the crest slows as it shoals, so c is at least the
+//      local crest speed and u / c errs low (towards not breaking);
 //   u  the fastest surface particle while the crest passes: the largest
 //      value of the gauge's surface-speed record (velocity along the wave's
 //      direction) over the samples where the surface is above its mean.
-// The crest before is the highest sample of the gauge before within the wave
-// period that ends at the crest here: the crest the wave had there. So the
-// gauges must be less than a crest's travel in a period apart (under a
-// wavelength), and a crest's travel between them should span several
-// samples. A wave whose crest there is at that window's edge (a standing
-// wave's, in phase at both gauges, or one passing within a sample) has no
-// crest speed.
+// The crest offshore is the highest sample of the offshore gauge within the
+// wave period that ends at the crest here: the crest the wave had there. So
+// the gauges must be less than a wavelength apart. A wave whose crest there
+// is at that window's edge (a standing wave's, in phase at both gauges, or
+// one passing within a sample) has no crest speed.
 //
 // Only a travelling crest counts. Every gravity wave up to the limiting
 // steepness (Miche 1944: H/L <= 0.142 tanh kh; in shallow water H/d <= 0.78)
@@ -46,11 +50,11 @@ struct CrestKinematics {
   double particle_speed = nan;  // its u
 };
 
-// `here`: the gauge's zero up-crossing statistics of `eta_here`; `eta_before`
-// the record of the gauge the waves pass before, `distance` ahead of it along
-// the waves' direction (> 0); `u_here` the surface-speed record; all sampled
-// at `time`; g = |gravity|.
-CrestKinematics crest_kinematics(std::span<const double> time, std::span<const double> eta_before,
+// `here`: the gauge's zero up-crossing statistics of `eta_here`; `eta_offshore`
+// the offshore gauge's record, `distance` behind along the waves' direction
+// (> 0); `u_here` the surface-speed record; all sampled at `time`;
+// g = |gravity|.
+CrestKinematics crest_kinematics(std::span<const double> time, std::span<const double> eta_offshore,
                                  std::span<const double> eta_here, std::span<const double> u_here,
                                  const WaveStatistics& here, double distance, double g);
 

@@ -56,6 +56,20 @@ std::string breaker_type(double xi) {
   return "spilling";
 }
 
+double linear_wavelength(double period, double depth, double g) {
+  if (!(period > 0.0 && depth > 0.0) || !std::isfinite(period) || !std::isfinite(depth))
+    return std::numeric_limits<double>::quiet_NaN();
+  const double omega2 = std::pow(2.0 * std::numbers::pi / period, 2);
+  // k g tanh(k d) rises with k; the root lies between the deep-water k (tanh < 1) and omega^2 / (g tanh(k_deep d)).
+  double lo = omega2 / g, hi = omega2 / (g * std::tanh(lo * depth));
+  for (int it = 0; it < 200 && hi - lo > 1e-15 * hi; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (g * mid * std::tanh(mid * depth) < omega2 ? lo : hi) = mid;
+  }
+  const double k = 0.5 * (lo + hi);
+  return 2.0 * std::numbers::pi / k;
+}
+
 BreakerNumbers breaker_numbers(double surf_height, double offshore_height, double period, double slope_degrees,
                                double water_depth, double g) {
   BreakerNumbers n;

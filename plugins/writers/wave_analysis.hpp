@@ -48,4 +48,9 @@ BreakerNumbers breaker_numbers(double surf_height, double offshore_height, doubl
 
 std::string breaker_type(double iribarren);
 
+// The linear wavelength L = 2 pi / k of period T in still water of depth d:
+// omega^2 = g k tanh(k d) (Dean & Dalrymple 1991, sec. 4.4). NaN for a
+// non-finite or non-positive T or d.
+double linear_wavelength(double period, double depth, double g);
+
 }  // namespace talus::writers

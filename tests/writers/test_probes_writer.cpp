@@ -250,8 +250,8 @@ TEST(ProbesWriter, SurfGaugesFindTheAirUnderAnOverturningCrestAndItsSpeed) {
 }
 
 // The waves' direction runs from the offshore gauge to the first surf gauge,
-// and the surf gauges are listed in the order the waves reach them.
-TEST(ProbesWriter, SurfGaugesMustStandInTheOrderTheWavesReachThem) {
+// and every surf gauge stands ahead of the offshore gauge.
+TEST(ProbesWriter, SurfGaugesMustStandAheadOfTheOffshoreGauge) {
   World w;
   w.lo = {0, 0, 0};
   w.hi = {0.3, 0.3, 0};
@@ -266,9 +266,9 @@ TEST(ProbesWriter, SurfGaugesMustStandInTheOrderTheWavesReachThem) {
       EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
     }
   };
-  refused(R"({"gauges": [[0.05, 0], [0.1, 0], [0.2, 0]], "gauge_names": ["OFF", "S1", "S2"],
-              "waves": {"offshore": "OFF", "surf": ["S2", "S1"]}})",
-          "/waves/surf: 'S1' is not ahead of 'S2' along the waves' direction");
+  refused(R"({"gauges": [[0.1, 0], [0.2, 0], [0.05, 0]], "gauge_names": ["OFF", "S1", "S2"],
+              "waves": {"offshore": "OFF", "surf": ["S1", "S2"]}})",
+          "/waves/surf: 'S2' is not ahead of the offshore gauge 'OFF' along the waves' direction");
   refused(R"({"gauges": [[0.05, 0], [0.05, 0.2]], "gauge_names": ["OFF", "S1"],
               "waves": {"offshore": "OFF", "surf": ["S1"]}})",
           "/waves/surf: the first surf gauge 'S1' stands on the offshore gauge's vertical line");

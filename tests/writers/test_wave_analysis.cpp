@@ -99,6 +99,17 @@ TEST(WaveAnalysis, RunupIsTheHighestWetPointAboveTheStillLevel) {
   EXPECT_NEAR(r["runup_mean"].number, 0.03, 2e-4);
 }
 
+TEST(WaveAnalysis, LinearWavelengthByTheDispersionRelation) {
+  // T = 1 s, d = 0.2 m: k = 5.1825681 (omega^2 = g k tanh kd solved by fixed-point iteration to 1e-15).
+  EXPECT_NEAR(writers::linear_wavelength(1.0, 0.2, 9.81), 2.0 * std::numbers::pi / 5.182568147220004, 1e-12);
+  // Deep water: g T^2 / 2 pi; shallow water: T sqrt(g d) (1 - (kd)^2 / 6), kd = 0.0665 at T = 10 s, d = 0.11 m.
+  EXPECT_NEAR(writers::linear_wavelength(1.0, 100.0, 9.81), 9.81 / (2.0 * std::numbers::pi), 1e-12);
+  const double shallow = 10.0 * std::sqrt(9.81 * 0.11);
+  EXPECT_NEAR(writers::linear_wavelength(10.0, 0.11, 9.81), shallow * (1.0 - 0.0665 * 0.0665 / 6.0), 2e-4 * shallow);
+  EXPECT_TRUE(std::isnan(writers::linear_wavelength(std::nan(""), 0.11, 9.81)));
+  EXPECT_TRUE(std::isnan(writers::linear_wavelength(1.0, 0.0, 9.81)));
+}
+
 TEST(WaveAnalysis, BreakerNumbersAndClassesByHand) {
   // T = 2 s: L0 = 9.81 * 4 / (2 pi) = 6.245240 m; phi = 20 deg, H = 0.05 m:
   // xi = tan 20 / sqrt(0.05 / 6.245240) = 4.067761; H0 = 0.04 m, d_w = 0.11 m, f = 0.5 Hz:
@@ -172,14 +183,14 @@ TEST(WaveAnalysis, TheCrestSpeedAndTheFastestSurfaceParticleOfEachWave) {
 
 TEST(WaveAnalysis, TheWavesSectionReadsTheGaugeRecordsOfAProbesFile) {
   test::TempDir dir("waves-section");
-  // Gauges at x = 1, 2, 3 m; the wave runs along +x at 1.5 m/s. S1's fastest surface particle is
+  // Gauges at x = 1, 1.6, 2.2 m; the wave runs along +x at 1.5 m/s. S1's fastest surface particle is
   // at half the crest's speed, S2's at 1.2 times it; S2 also sees air under its surface once, at
   // t = 6 s (row 120); an earlier one, at 1 s, is before the window.
   const double c = 1.5;
   const Record clock = waves(0.0, 0.0, 0.0, 2.0, 40, 10);
   const Gauge off = passing_wave(1.0, 0.11, 0.010, c, 2.0, 0.0, 40, 10),
-              s1 = passing_wave(2.0, 0.11, 0.015, c, 2.0, 0.5 * c, 40, 10),
-              s2 = passing_wave(3.0, 0.11, 0.012, c, 2.0, 1.2 * c, 40, 10);
+              s1 = passing_wave(1.6, 0.11, 0.015, c, 2.0, 0.5 * c, 40, 10),
+              s2 = passing_wave(2.2, 0.11, 0.012, c, 2.0, 1.2 * c, 40, 10);
   auto probes_file = [&](const std::string& name, bool air) {
     std::string csv =
         "# talus probes: scene test\ntime,step,OFF_elevation,S1_elevation,S2_elevation,S1_air_below,S2_air_below,"
@@ -195,11 +206,11 @@ TEST(WaveAnalysis, TheWavesSectionReadsTheGaugeRecordsOfAProbesFile) {
   };
   const std::string file = probes_file("probes.csv", true);
   const auto params = params_from_json(writers::ProbesWriter::describe(),
-                                       R"({"gauges": [[1, 0], [2, 0], [3, 0]], "gauge_names": ["OFF", "S1", "S2"],
+                                       R"({"gauges": [[1, 0], [1.6, 0], [2.2, 0]], "gauge_names": ["OFF", "S1", "S2"],
                                            "waves": {"offshore": "OFF", "surf": ["S1", "S2"], "slope": 20,
                                                      "water_depth": 0.11, "from": 2}})",
                                        2);
-  const std::vector<Vec3> at = {{1, 0, 0}, {2, 0, 0}, {3, 0, 0}};
+  const std::vector<Vec3> at = {{1, 0, 0}, {1.6, 0, 0}, {2.2, 0, 0}};
   writers::BreakerAnalysis analysis(params.object("waves"), {"OFF", "S1", "S2"});
   analysis.place(params.object("waves"), at, 1);
   std::map<std::string, WriterResult> r;
@@ -215,7 +226,7 @@ TEST(WaveAnalysis, TheWavesSectionReadsTheGaugeRecordsOfAProbesFile) {
   EXPECT_EQ(r["overturned"].text, "yes");
   EXPECT_EQ(r["overturn_gauge"].text, "S2");
   EXPECT_NEAR(r["overturn_time"].number, 6.0, 1e-9);
-  // The crest speeds from OFF to S1 and from S1 to S2; S2's crest is overtaken.
+  // The crest speeds from OFF to S1 and to S2; S2's crest is overtaken.
   EXPECT_NEAR(r["S1_kinematic_ratio"].number, 0.5, 0.005);
   EXPECT_NEAR(r["S2_kinematic_ratio"].number, 1.2, 0.012);
   EXPECT_NEAR(r["kinematic_ratio"].number, 1.2, 0.012);
@@ -238,7 +249,7 @@ TEST(WaveAnalysis, TheWavesSectionReadsTheGaugeRecordsOfAProbesFile) {
   EXPECT_EQ(spilled["observed_type"].text, "spilling");
   // Without a slope: the waves, but no breaker numbers; S1 alone did not break.
   const auto flat = params_from_json(writers::ProbesWriter::describe(),
-                                     R"({"gauges": [[1, 0], [2, 0]], "gauge_names": ["OFF", "S1"],
+                                     R"({"gauges": [[1, 0], [1.6, 0]], "gauge_names": ["OFF", "S1"],
                                          "waves": {"offshore": "OFF", "surf": ["S1"], "from": 2}})",
                                      2);
   writers::BreakerAnalysis s1_only(flat.object("waves"), {"OFF", "S1"});
@@ -255,13 +266,26 @@ TEST(WaveAnalysis, TheWavesSectionReadsTheGaugeRecordsOfAProbesFile) {
   EXPECT_EQ(f["observed_type"].text, "surging_or_collapsing");
   // A higher threshold than the fastest crest's ratio: S2 did not break either.
   const auto strict = params_from_json(writers::ProbesWriter::describe(),
-                                       R"({"gauges": [[1, 0], [2, 0], [3, 0]], "gauge_names": ["OFF", "S1", "S2"],
+                                       R"({"gauges": [[1, 0], [1.6, 0], [2.2, 0]], "gauge_names": ["OFF", "S1", "S2"],
                                            "waves": {"offshore": "OFF", "surf": ["S1", "S2"], "kinematic_threshold": 1.3}})",
                                        2);
   writers::BreakerAnalysis strict_analysis(strict.object("waves"), {"OFF", "S1", "S2"});
   strict_analysis.place(strict.object("waves"), at, 1);
   for (const auto& result : strict_analysis.analyse(dir.file("spilled.csv"), 9.81))
     if (result.name == "observed_type") EXPECT_EQ(result.text, "surging_or_collapsing");
+  // In 0.02 m of water a 2 s wave is 0.886 m long: S2, 1.2 m out, is beyond a wavelength, and its crests
+  // cannot be matched to the offshore gauge's.
+  const auto shallow = params_from_json(writers::ProbesWriter::describe(),
+                                        R"({"gauges": [[1, 0], [1.6, 0], [2.2, 0]], "gauge_names": ["OFF", "S1", "S2"],
+                                            "waves": {"offshore": "OFF", "surf": ["S1", "S2"], "water_depth": 0.02}})",
+                                        2);
+  writers::BreakerAnalysis shallow_analysis(shallow.object("waves"), {"OFF", "S1", "S2"});
+  shallow_analysis.place(shallow.object("waves"), at, 1);
+  std::map<std::string, WriterResult> beyond;
+  for (const auto& result : shallow_analysis.analyse(file, 9.81)) beyond[result.name] = result;
+  EXPECT_NEAR(beyond["S1_kinematic_ratio"].number, 0.5, 0.005);
+  EXPECT_TRUE(std::isnan(beyond["S2_kinematic_ratio"].number));
+  EXPECT_EQ(beyond["kinematic_gauge"].text, "S1");
   // Names that are not its gauges are refused, naming them.
   try {
     writers::BreakerAnalysis(params.object("waves"), {"OFF", "S2"});
