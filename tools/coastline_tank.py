@@ -12,6 +12,7 @@ merged), with sea water over the columns lower than the still water.
   tools/coastline_tank.py --dim 3 --dp 0.01 -o tank_3d.json       # the seed's 3D tank at its resolution
   tools/coastline_tank.py --dim 2 --slope 30 -o section_30.json   # another seaward slope
   tools/coastline_tank.py --slope-study 20 30 45 59.5 70 -o slopes.json  # a study over the seaward slope
+  tools/coastline_tank.py --dp-study 0.0135 0.009 0.00675 -o spacings.json  # a study over the particle spacing
 
 Geometry (the seed, sec. 2.3.2): tank 1.206 x 0.454 x 0.463 m, still water 0.11 m (the 2D
 section: 0.108 m, whole spacings), bank 135 mm high, 130 mm crest, toe 0.702 m from the piston,
@@ -151,6 +152,24 @@ def scene(dim, dp, slope, period, stroke, end):
     }
 
 
+def study(base, variants, named_axes, more_results=(), series=()):
+    """A study of the variants' scenes (zipped: domain, bodies and probes of each), with the named axes for the
+    table; measures: the breaker analysis, the bed's change, the run's wall time, and `series` (name, probes
+    column, reduction)."""
+    measures = [{"name": name, "summary": "/results/probes/" + key} for name, key in (
+        ("H_surf", "surf_height"), ("T", "period"), ("xi", "iribarren"), ("Fn", "froude"),
+        ("type", "breaker_type"), ("observed", "observed_type"), ("u_over_c", "kinematic_ratio"),
+        ("runup", "runup_max"), ("eroded", "bed_eroded_area")) + tuple(more_results)]
+    measures += [{"name": name, "series": column, "reduce": reduce} for name, column, reduce in series]
+    measures.append({"name": "wall_s", "summary": "/wall_seconds"})
+    axes = [{"pointer": "/domain", "name": "domain", "values": [v["domain"] for v in variants]},
+            {"pointer": "/bodies", "name": "bank", "values": [v["bodies"] for v in variants]},
+            {"pointer": "/outputs", "name": "probes", "values": [v["outputs"] for v in variants]}]
+    if len({json.dumps(v["domain"]) for v in variants}) == 1:
+        axes = axes[1:]  # one domain for all
+    return {"base": base, "combine": "zip", "axes": axes + named_axes, "measures": measures}
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--dim", type=int, choices=[2, 3], default=2)
@@ -161,22 +180,24 @@ def main(argv=None):
     p.add_argument("--end", type=float, default=6.0, help="simulated time, s (default 6)")
     p.add_argument("--slope-study", type=float, nargs="+", metavar="DEG",
                    help="write a study over these seaward slopes instead (its base: --base)")
+    p.add_argument("--dp-study", type=float, nargs="+", metavar="DP",
+                   help="write a study over these particle spacings instead (its base: --base)")
     p.add_argument("--base", default="../scenes/coastline_breaker_2d.json",
-                   help="--slope-study: the base scene, relative to the study file")
+                   help="--slope-study, --dp-study: the base scene, relative to the study file")
     p.add_argument("-o", "--output", required=True)
     a = p.parse_args(argv)
     dp = a.dp or (0.0135 if a.dim == 2 else 0.01)
+    if a.slope_study and a.dp_study:
+        p.error("--slope-study and --dp-study: one study at a time")
     if a.slope_study:
         variants = [scene(a.dim, dp, s, a.period, a.stroke, a.end) for s in a.slope_study]
-        doc = {"base": a.base, "combine": "zip",
-               "axes": [{"pointer": "/bodies", "name": "bank", "values": [v["bodies"] for v in variants]},
-                        {"pointer": "/outputs", "name": "probes", "values": [v["outputs"] for v in variants]},
-                        {"pointer": "/outputs/0/waves/slope", "name": "slope", "values": a.slope_study}],
-               "measures": [{"name": name, "summary": "/results/probes/" + key} for name, key in (
-                   ("H_surf", "surf_height"), ("T", "period"), ("xi", "iribarren"), ("Fn", "froude"),
-                   ("type", "breaker_type"), ("observed", "observed_type"), ("u_over_c", "kinematic_ratio"),
-                   ("runup", "runup_max"),
-                   ("eroded", "bed_eroded_area"))] + [{"name": "wall_s", "summary": "/wall_seconds"}]}
+        doc = study(a.base, variants, [{"pointer": "/outputs/0/waves/slope", "name": "slope", "values": a.slope_study}])
+    elif a.dp_study:
+        variants = [scene(a.dim, d, a.slope, a.period, a.stroke, a.end) for d in a.dp_study]
+        doc = study(a.base, variants, [{"pointer": "/bodies/0/dp", "name": "dp", "values": a.dp_study}],
+                    [("deposited", "bed_deposited_area")],
+                    [("sediment_mass_first", "mass_sediment", "first"), ("sediment_mass_last", "mass_sediment", "last"),
+                     ("water_mass_first", "mass_seawater", "first"), ("water_mass_last", "mass_seawater", "last")])
     else:
         doc = scene(a.dim, dp, a.slope, a.period, a.stroke, a.end)
     with open(a.output, "w", encoding="utf-8") as f:
