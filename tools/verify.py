@@ -4,6 +4,10 @@ resolution ladder (and option sweeps) with the `talus` binary, measures
 error, cost and stability, and writes a Markdown report, PNG plots of
 error against wall time, and the raw CSV.
 
+Each case runs as one `talus study` (a variant per rung and option) in
+OUT/runs/CASE/variants/, so a stopped verification resumes with --reuse and
+--jobs runs the rungs side by side.
+
   python3 tools/verify.py                 # full ladder, report in docs/verification/
   python3 tools/verify.py --quick         # smallest rung of every case (the test suite runs this)
   python3 tools/verify.py --case hydrostatic_2d --out /tmp/v
@@ -33,9 +37,11 @@ def main():
     parser.add_argument("--out", default=None, help="report folder (default docs/verification, or a scratch folder with --quick)")
     parser.add_argument("--threads", type=int, default=2, help="OpenMP threads per run")
     parser.add_argument("--list", action="store_true", help="list the registered cases and exit")
+    parser.add_argument("--jobs", type=int, default=1, help="runs of a case side by side (each with --threads)")
     parser.add_argument("--reuse", action="store_true",
-                        help="judge runs already stored under --out (same scene) again without running talus: "
-                             "for new tolerances, gates or report layout")
+                        help="resume a case's study stored under --out when its runs are the same: finished runs are "
+                             "judged again without running talus (new tolerances, gates or report layout), stopped "
+                             "ones resume from their checkpoints; without it every case starts afresh")
     parser.add_argument("--walls", choices=["dbc", "mdbc"], default=None,
                         help="run every case that has particle walls (dynamic_particles, block_particles) with this "
                              "wall method; the option label says so, cases without such walls are skipped")
@@ -61,7 +67,7 @@ def main():
     results = []
     for case in cases:
         results.extend(runner.run_case(case, args.talus, root, out, quick=args.quick, threads=args.threads,
-                                      reuse=args.reuse, walls=args.walls))
+                                      reuse=args.reuse, walls=args.walls, jobs=max(1, args.jobs)))
     # Re-running some cases updates an existing report: the other cases keep their stored results.
     all_cases = registry.load_cases()
     if args.case and not args.quick:

@@ -79,7 +79,8 @@ class RunningMaximum(unittest.TestCase):
         result = self.run_drop(0.5, "a")
         self.assertTrue(result.hard)
         self.assertTrue(result.stable, result.failure)
-        with open(os.path.join(self.out, "a", "runs", "drop", "default", "res_0.01", "summary.json")) as f:
+        self.assertEqual(result.directory, os.path.join(self.out, "a", "runs", "drop", "variants", "001"))
+        with open(os.path.join(result.directory, "summary.json")) as f:
             summary = json.load(f)
         m = STATUS.search(summary["stages"]["wcsph"])
         self.assertIsNotNone(m, summary["stages"]["wcsph"])
@@ -100,22 +101,24 @@ class RunningMaximum(unittest.TestCase):
 
     def test_reuse_judges_the_stored_run_again_without_running(self):
         first = self.run_drop(0.5, "d")
-        summary = os.path.join(self.out, "d", "runs", "drop", "default", "res_0.01", "summary.json")
+        summary = os.path.join(first.directory, "summary.json")
         stamp = os.stat(summary).st_mtime_ns
         again = runner.run_case(drop_case(0.01), TALUS, ROOT, os.path.join(self.out, "d"), threads=1, reuse=True)[0]
         self.assertEqual(os.stat(summary).st_mtime_ns, stamp)  # talus did not run
         self.assertTrue(first.stable)
         self.assertFalse(again.stable)  # the stricter limit judged on the same run
         self.assertEqual(again.steps, first.steps)
+        # Without reuse the case starts afresh.
+        runner.run_case(drop_case(0.5), TALUS, ROOT, os.path.join(self.out, "d"), threads=1)
+        self.assertNotEqual(os.stat(summary).st_mtime_ns, stamp)
 
     def test_restart_keeps_the_worst_value(self):
-        self.run_drop(0.5, "c")
-        folder = os.path.join(self.out, "c", "runs", "drop", "default", "res_0.01")
-        checkpoints = sorted(p for p in os.listdir(os.path.join(folder, "out")) if p.endswith(".checkpoint"))
+        folder = self.run_drop(0.5, "c").directory
+        checkpoints = sorted(p for p in os.listdir(folder) if p.endswith(".checkpoint"))
         self.assertEqual(len(checkpoints), 2)
         restarted = os.path.join(self.out, "c-restart")
-        shutil.copytree(os.path.join(folder, "out"), restarted)
-        subprocess.run([TALUS, "run", os.path.join(folder, "scene.json"), "--out", restarted, "--quiet", "--threads",
+        shutil.copytree(folder, restarted)
+        subprocess.run([TALUS, "run", os.path.join(folder, "base.json"), "--out", restarted, "--quiet", "--threads",
                         "1", "--restart", os.path.join(restarted, checkpoints[0]), "--summary",
                         os.path.join(restarted, "s.json")], check=True)
         with open(os.path.join(folder, "summary.json")) as f:

@@ -135,7 +135,7 @@ def write(results, cases, out, quick=False):
 
     lines = ["# Talus verification report", "",
              f"Machine: {machine()}.", "",
-             "Each case runs a resolution ladder with `talus run`; error is against the reference named below; "
+             "Each case runs its resolution ladder as a `talus study` (a run per rung and option); error is against the reference named below; "
              "wall time and throughput are from the run summary; the observed order compares each rung with the "
              "previous one. Regenerate with `python3 tools/verify.py` (full) or `--quick` (smallest rungs).", ""]
     if quick:

@@ -73,7 +73,7 @@ def safety_factor(run):
 
 
 def trials(run):
-    with open(os.path.join(run.directory, "out", "strength_reduction.csv")) as f:
+    with open(os.path.join(run.directory, "strength_reduction.csv")) as f:
         return list(csv.DictReader(f))
 
 
