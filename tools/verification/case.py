@@ -1,5 +1,9 @@
 """What a validation case module defines (tools/verification/cases/NAME.py):
 
+The harness runs a case's rungs (and option sweep) as one `talus study`; a finished run is a
+runner.Run whose `directory` is the variant's folder: its scene, run.log, summary.json and every
+output file.
+
   NAME        short identifier
   TITLE       one line for the report
   SCENE       scene file relative to the repository root (the template)
@@ -18,8 +22,9 @@ Optional:
               the sound speed and h/dp, held fixed): the error must then only stay within the
               tolerance, not fall. Default True: an error that grows with resolution fails.
   gates(run) -> list of (name, passed, value-text): stability gates (no NaN, mass, ...)
-  prepare(directory, scene, resolution)  writes files the configured scene names by a path relative to itself
-              (it is run from `directory`), e.g. a release-thickness raster made for the rung
+  prepare(directory, scene, resolution)  writes files the configured scene names by a path relative to
+              `directory`, e.g. a release-thickness raster made for the rung (the harness then names them
+              absolutely: every rung runs as a variant of one study, in a folder of its own)
   QUICK_INDEX index of the rung --quick runs (default 0)
   QUICK_END   simulated end time (s) of the --quick run, a short variant of that rung for costly cases
               (it must still cover the part of the run the case is about; gates read run.scene)
