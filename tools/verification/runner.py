@@ -8,7 +8,6 @@ import os
 import re
 import shutil
 import subprocess
-import sys
 from dataclasses import dataclass, field
 
 from verification.registry import is_hard
@@ -125,7 +124,7 @@ def study_of(scenes):
                   "measures": [{"name": "steps", "summary": "/steps"}]}
 
 
-def run_study(case, talus, directory, scenes, threads, jobs, reuse):
+def run_study(talus, directory, scenes, threads, jobs, reuse):
     """Runs the scenes as a study in `directory` (its variants in directory/variants/ID); the table's rows, in the
     order of the scenes. With reuse the study resumes (finished variants are not run again) when it is the one
     stored there; otherwise it starts afresh."""
@@ -142,7 +141,7 @@ def run_study(case, talus, directory, scenes, threads, jobs, reuse):
         f.write(study_text)
     command = [talus, "study", study_path, "--out", variants, "--jobs", str(jobs), "--threads", str(threads * jobs),
                "--retry-failed"]
-    proc = subprocess.run(command, stdout=sys.stdout, stderr=subprocess.PIPE, text=True)
+    proc = subprocess.run(command, stderr=subprocess.PIPE, text=True)  # its progress lines go to our stdout
     if proc.returncode in (130, 143):
         raise KeyboardInterrupt(f"talus study stopped ({proc.returncode}): {proc.stderr.strip()}")
     table = os.path.join(variants, "table.json")
@@ -191,7 +190,7 @@ def run_case(case, talus, root, out, quick=False, threads=2, reuse=False, walls=
     os.makedirs(directory, exist_ok=True)
     print(f"verify: {case.NAME}: " + ", ".join(f"{k + 1:03d} [{p[1]}] resolution {p[2]:g}" for k, p in enumerate(planned)),
           flush=True)
-    rows = run_study(case, talus, directory, [p[3] for p in planned], threads, jobs, reuse)
+    rows = run_study(talus, directory, [p[3] for p in planned], threads, jobs, reuse)
 
     results = []
     previous, ladder_of = None, None
