@@ -8,9 +8,11 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -25,7 +27,15 @@
 
 namespace talus {
 
+// The high-water mark of this process's own memory (VmHWM). Not getrusage's
+// ru_maxrss: Linux folds into it the peak of whatever ran in this process
+// before exec (the shell, Python or `talus study` that started it), so a
+// small run started from a large process would report the larger peak.
 double peak_memory_mib() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::strtod(line.c_str() + 6, nullptr) / 1024.0;  // kB
   struct rusage usage {};
   getrusage(RUSAGE_SELF, &usage);
   return usage.ru_maxrss / 1024.0;

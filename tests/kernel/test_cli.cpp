@@ -287,6 +287,21 @@ TEST(Cli, SummaryCountsFluidAndWallParticleSteps) {
             steps * summary["wall_particles"].get<std::uint64_t>());
 }
 
+// The summary's peak memory is the run's own: started from a process that has
+// touched 256 MiB (a shell that execs talus keeps the starter's peak in
+// getrusage's ru_maxrss), a tiny run reports tens of MiB.
+TEST(Cli, PeakMemoryIsTheRunsOwnNotItsStarters) {
+  std::vector<char> ballast(256u << 20);
+  for (std::size_t i = 0; i < ballast.size(); i += 4096) ballast[i] = static_cast<char>(i);
+  const std::string dir = fresh_dir("peak_memory");
+  const auto r = run_command(exe + " run " + scenes + "/ballistic.json --quiet --out " + dir + " --summary " + dir + ".json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const double peak = nlohmann::json::parse(read_file(dir + ".json"))["peak_memory_mib"].get<double>();
+  EXPECT_GT(peak, 1.0);
+  EXPECT_LT(peak, 128.0) << "the starter's 256 MiB counted as the run's";
+  asm volatile("" : : "r"(ballast.data()) : "memory");  // the ballast stays allocated through the run
+}
+
 TEST(Cli, UnwritableOutputFolderIsARunError) {
   const auto r = run_command(exe + " run " + scenes + "/ballistic.json --quiet --out /proc/version/out");
   EXPECT_EQ(r.exit_code, 1) << r.output;
