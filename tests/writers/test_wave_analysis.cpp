@@ -247,15 +247,20 @@ TEST(WaveAnalysis, TheWavesSectionReadsTheGaugeRecordsOfAProbesFile) {
   for (const auto& result : analysis.analyse(probes_file("spilled.csv", false), 9.81)) spilled[result.name] = result;
   EXPECT_EQ(spilled["overturned"].text, "no");
   EXPECT_EQ(spilled["observed_type"].text, "spilling");
+  // Another waves section over the same records, by name.
+  auto analysed = [&](const char* json, const std::vector<std::string>& names, const std::vector<Vec3>& where,
+                      const std::string& records) {
+    const auto other = params_from_json(writers::ProbesWriter::describe(), json, 2);
+    writers::BreakerAnalysis a(other.object("waves"), names);
+    a.place(other.object("waves"), where, 1);
+    std::map<std::string, WriterResult> by_name;
+    for (const auto& result : a.analyse(records, 9.81)) by_name[result.name] = result;
+    return by_name;
+  };
   // Without a slope: the waves, but no breaker numbers; S1 alone did not break.
-  const auto flat = params_from_json(writers::ProbesWriter::describe(),
-                                     R"({"gauges": [[1, 0], [1.6, 0]], "gauge_names": ["OFF", "S1"],
-                                         "waves": {"offshore": "OFF", "surf": ["S1"], "from": 2}})",
-                                     2);
-  writers::BreakerAnalysis s1_only(flat.object("waves"), {"OFF", "S1"});
-  s1_only.place(flat.object("waves"), {at[0], at[1]}, 1);
-  std::map<std::string, WriterResult> f;
-  for (const auto& result : s1_only.analyse(file, 9.81)) f[result.name] = result;
+  auto f = analysed(R"({"gauges": [[1, 0], [1.6, 0]], "gauge_names": ["OFF", "S1"],
+                        "waves": {"offshore": "OFF", "surf": ["S1"], "from": 2}})",
+                    {"OFF", "S1"}, {at[0], at[1]}, file);
   EXPECT_NEAR(f["surf_height"].number, 0.03, 3e-4);
   EXPECT_TRUE(std::isnan(f["iribarren"].number));
   EXPECT_TRUE(std::isnan(f["froude"].number));
@@ -265,24 +270,15 @@ TEST(WaveAnalysis, TheWavesSectionReadsTheGaugeRecordsOfAProbesFile) {
   EXPECT_EQ(f["kinematic_breaking"].text, "no");
   EXPECT_EQ(f["observed_type"].text, "surging_or_collapsing");
   // A higher threshold than the fastest crest's ratio: S2 did not break either.
-  const auto strict = params_from_json(writers::ProbesWriter::describe(),
-                                       R"({"gauges": [[1, 0], [1.6, 0], [2.2, 0]], "gauge_names": ["OFF", "S1", "S2"],
-                                           "waves": {"offshore": "OFF", "surf": ["S1", "S2"], "kinematic_threshold": 1.3}})",
-                                       2);
-  writers::BreakerAnalysis strict_analysis(strict.object("waves"), {"OFF", "S1", "S2"});
-  strict_analysis.place(strict.object("waves"), at, 1);
-  for (const auto& result : strict_analysis.analyse(dir.file("spilled.csv"), 9.81))
-    if (result.name == "observed_type") EXPECT_EQ(result.text, "surging_or_collapsing");
+  EXPECT_EQ(analysed(R"({"gauges": [[1, 0], [1.6, 0], [2.2, 0]], "gauge_names": ["OFF", "S1", "S2"],
+                         "waves": {"offshore": "OFF", "surf": ["S1", "S2"], "kinematic_threshold": 1.3}})",
+                     {"OFF", "S1", "S2"}, at, dir.file("spilled.csv"))["observed_type"].text,
+            "surging_or_collapsing");
   // In 0.02 m of water a 2 s wave is 0.886 m long: S2, 1.2 m out, is beyond a wavelength, and its crests
   // cannot be matched to the offshore gauge's.
-  const auto shallow = params_from_json(writers::ProbesWriter::describe(),
-                                        R"({"gauges": [[1, 0], [1.6, 0], [2.2, 0]], "gauge_names": ["OFF", "S1", "S2"],
-                                            "waves": {"offshore": "OFF", "surf": ["S1", "S2"], "water_depth": 0.02}})",
-                                        2);
-  writers::BreakerAnalysis shallow_analysis(shallow.object("waves"), {"OFF", "S1", "S2"});
-  shallow_analysis.place(shallow.object("waves"), at, 1);
-  std::map<std::string, WriterResult> beyond;
-  for (const auto& result : shallow_analysis.analyse(file, 9.81)) beyond[result.name] = result;
+  auto beyond = analysed(R"({"gauges": [[1, 0], [1.6, 0], [2.2, 0]], "gauge_names": ["OFF", "S1", "S2"],
+                             "waves": {"offshore": "OFF", "surf": ["S1", "S2"], "water_depth": 0.02}})",
+                         {"OFF", "S1", "S2"}, at, file);
   EXPECT_NEAR(beyond["S1_kinematic_ratio"].number, 0.5, 0.005);
   EXPECT_TRUE(std::isnan(beyond["S2_kinematic_ratio"].number));
   EXPECT_EQ(beyond["kinematic_gauge"].text, "S1");
