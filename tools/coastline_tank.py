@@ -17,7 +17,7 @@ merged), with sea water over the columns lower than the still water.
 Geometry (the seed, sec. 2.3.2): tank 1.206 x 0.454 x 0.463 m, still water 0.11 m (the 2D
 section: 0.108 m, whole spacings), bank 135 mm high, 130 mm crest, toe 0.702 m from the piston,
 lagoon flank at 59.5 deg. Another seaward slope keeps the crest where the seed's is and moves
-the toe out (below about 10 deg it reaches the piston and is refused). Standard library only.
+the toe out (below about 12 deg it comes within 0.1 m of the piston and is refused). Standard library only.
 """
 import argparse
 import json
