@@ -27,7 +27,6 @@ struct PassContext {
   const double* mu;  // per material
   Vec3 gravity;
   sph::Neighbours nb;  // the fluid's fields, with 1/rho and rho/c^2
-  sph::ReactionBuffers& reactions;
 };
 
 template <class... Terms>
@@ -50,8 +49,8 @@ std::uint64_t run_force_pass(const PassContext& ctx, const Terms&... terms) {
   };
   auto finish = [&](Index i) { f.a[i] += g; };
   const sph::FluidReactions out{f.a.data(), f.drho.data(), f.visc.data()};
-  return sph::mutual_pair_pass(ctx.cells, ctx.world.kernel, out, ctx.reactions, ctx.world.fluid.owned_size(), start,
-                               finish, terms...);
+  return sph::mutual_pair_pass(ctx.cells, ctx.world.kernel, out, ctx.world.fluid.owned_size(), start, finish,
+                               terms...);
 }
 
 template <class... Terms>
@@ -93,7 +92,7 @@ std::uint64_t WcsphStage::fluid_pass(World& world) {
   // The three-pass viscosity's force pass reads mu_eff of both particles; start() then takes mu_eff[i].
   if (per_particle_viscosity_) nb.viscosity = world.fluid.scalar("mu_eff").data();
   const PassContext ctx{world,          f, cells_, per_particle_viscosity_ ? nullptr : material_mu_.data(),
-                        world.gravity, nb, reactions_};
+                        world.gravity, nb};
   const sph::PressureForce pressure{nb};
   const double delta_h_c0 = delta_ * h_ * c0_max_;
   return with_viscosity_term<Neighbour::fluid>(viscosity_settings(world), nb, nb, [&](const auto& viscous) {

@@ -128,7 +128,6 @@ class WcsphStage final : public Stage {
   NeighbourGrid cells_;
   Vec3 period_;  // domain length on periodic axes (lever arms of rigid-body wall sets)
   std::vector<double> inv_rho_, rho_over_c2_;  // scratch, refilled every evaluation (grow only)
-  sph::ReactionBuffers reactions_;             // the force pass's per-thread reactions (grow only)
   std::vector<std::string> halo_fields_;       // scratch: the fields refresh_halos() sends
 
   // Step state.

@@ -171,6 +171,52 @@ TEST_P(OneRadius, LaterNeighboursGiveEveryPairOnce) {
   EXPECT_EQ(later_pairs_both_ways(c, radius), expected);
 }
 
+// The write blocks: every sorted slot in exactly one block, and no point
+// written (as i or as a later neighbour j) from two blocks of one colour.
+// Returns the number of blocks that hold a point.
+std::size_t expect_write_blocks_disjoint(const Cloud& c, double radius) {
+  NeighbourGrid grid;
+  grid.configure(c.dim, c.lo, c.hi, radius, c.periodic);
+  grid.build(c.pos);
+  const auto order = grid.order();
+  std::vector<int> times_run(order.size(), 0);
+  std::size_t filled = 0, clashes = 0;
+  for (int colour = 0; colour < grid.write_colours(); ++colour) {
+    std::vector<long long> writer(c.pos.size(), -1);
+    for (std::size_t k = 0; k < grid.write_blocks(colour); ++k) {
+      auto claim = [&](Index p) {
+        if (writer[p] >= 0 && writer[p] != static_cast<long long>(k)) ++clashes;
+        writer[p] = static_cast<long long>(k);
+      };
+      std::size_t last_end = 0;
+      bool any = false;
+      grid.for_each_write_block_run(colour, k, [&](std::size_t begin, std::size_t end) {
+        EXPECT_LT(begin, end);
+        EXPECT_TRUE(!any || begin > last_end) << "runs are separate and in slot order";
+        any = true;
+        last_end = end;
+        for (std::size_t s = begin; s < end; ++s) {
+          ++times_run[s];
+          claim(order[s]);
+          grid.for_each_later_neighbour(s, radius, [&](Index j, const Vec3&, double) { claim(j); });
+        }
+      });
+      filled += any ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(clashes, 0u);
+  EXPECT_EQ(std::count(times_run.begin(), times_run.end(), 1), static_cast<long>(order.size()));
+  return filled;
+}
+
+TEST_P(OneRadius, WriteBlocksOfAColourShareNoPoint) {
+  const auto [dim, periodic, outside] = GetParam();
+  const Cloud c = random_cloud(dim, {-0.3, 0.1, 0.0}, {0.9, 0.7, 0.5}, periodic, outside, 1200,
+                               9u + dim + 2 * periodic[0] + 4 * periodic[1] + 8 * periodic[2] + 16 * outside);
+  // Cells of 0.03 m, 20 (x 16) along y (and z): several blocks of each colour.
+  EXPECT_GT(expect_write_blocks_disjoint(c, 0.06), 18u);
+}
+
 INSTANTIATE_TEST_SUITE_P(Layouts, OneRadius,
                          ::testing::Values(Layout{2, {false, false, false}, false},
                                            Layout{2, {false, false, false}, true}, Layout{2, {true, false, false}, true},
@@ -184,6 +230,19 @@ TEST(NeighbourGrid, ReportsEveryImageOnAPeriodShorterThanTwoRadii) {
   const auto expected = brute_force(c, 0.1, [](std::size_t, std::size_t) { return 0.1; });
   EXPECT_EQ(one_radius(c, 0.1), expected);
   EXPECT_EQ(later_pairs_both_ways(c, 0.1), without_self(expected));
+  EXPECT_GT(expect_write_blocks_disjoint(c, 0.1), 0u);
+}
+
+// Periods of 4 to 9 blocks: more than three blocks along a periodic axis
+// must come in a multiple of three, or the first and last of a colour meet.
+TEST(NeighbourGrid, WriteBlocksOnShortPeriodsShareNoPoint) {
+  for (int cells = 8; cells <= 19; ++cells) {
+    const double period = cells * 0.05 + 0.01;
+    const Cloud c = random_cloud(2, {0.0, 0.0, 0.0}, {period, period, 0.0}, {true, true, false}, false, 600,
+                                 static_cast<unsigned>(cells));
+    SCOPED_TRACE(cells);
+    expect_write_blocks_disjoint(c, 0.1);
+  }
 }
 
 class OwnRadii : public ::testing::TestWithParam<std::tuple<bool, bool, bool>> {};

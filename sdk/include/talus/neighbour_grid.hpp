@@ -165,6 +165,58 @@ class NeighbourGrid {
       query<false, false>(x, reach, f, first);
   }
 
+  // Write blocks, for a pass that adds each pair's share to both of its
+  // points from several threads with no copy of the output per thread (a grid
+  // of one level, searched within radius()). The cells are grouped, along the
+  // two outermost axes of the sorted order (y and z in 3D), into blocks at
+  // least two cells (one search radius) wide, whole along x; runs of a block
+  // are then whole rows of cells, and two threads seldom write to one cache
+  // line. A point's later neighbours lie in its own block or the blocks next
+  // to it, and along the outermost closed axis only in its own or the next
+  // one (later slots are not lower there). Blocks of one colour are three
+  // blocks apart (two along that axis) and share no neighbour: a colour's
+  // blocks can run at once, and the colours run one after the other. Every
+  // point then receives its shares in an order that the cells alone fix, so
+  // the result is the same on any number of threads.
+  int write_colours() const { return write_step_[0] * write_step_[1]; }
+
+  // The number of blocks of a colour.
+  std::size_t write_blocks(int colour) const {
+    return static_cast<std::size_t>(blocks_of_colour(colour % write_step_[0], 0)) *
+           blocks_of_colour(colour / write_step_[0], 1);
+  }
+
+  // f(begin, end) for the runs of sorted slots of block k of a colour, in
+  // slot order.
+  template <class F>
+  void for_each_write_block_run(int colour, std::size_t k, F&& f) const {
+    const Level& L = level_[0];
+    const int first[2] = {colour % write_step_[0], colour / write_step_[0]};
+    const int along = blocks_of_colour(first[0], 0);
+    const int block[2] = {first[0] + write_step_[0] * static_cast<int>(k % along),
+                          first[1] + write_step_[1] * static_cast<int>(k / along)};
+    std::array<int, 3> lo{0, 0, 0}, hi = L.n;
+    for (int b = 0; b < 2; ++b) {
+      const int a = write_axis_[b];
+      const long long n = L.n[a], count = write_blocks_along_[b];
+      lo[a] = static_cast<int>(block[b] * n / count);
+      hi[a] = static_cast<int>((block[b] + 1) * n / count);
+    }
+    Index begin = 0, end = 0;
+    for (int cz = lo[2]; cz < hi[2]; ++cz)
+      for (int cy = lo[1]; cy < hi[1]; ++cy) {
+        const std::size_t row = (static_cast<std::size_t>(cz) * L.n[1] + cy) * L.n[0];
+        const Index s0 = cell_start_[row + lo[0]], s1 = cell_start_[row + hi[0]];
+        if (s0 == s1) continue;
+        if (s0 != end) {
+          if (end > begin) f(std::size_t{begin}, std::size_t{end});
+          begin = s0;
+        }
+        end = s1;
+      }
+    if (end > begin) f(std::size_t{begin}, std::size_t{end});
+  }
+
   // Every point j of a level within max(own, the level's largest radius) of x:
   // a superset of the pairs with r < max(R_x, R_j), which the caller keeps.
   template <class F>
@@ -191,6 +243,29 @@ class NeighbourGrid {
       return (static_cast<std::size_t>(z) * n[1] + axis_cell(p.y, lo.y, 1)) * n[0] + axis_cell(p.x, lo.x, 0);
     }
   };
+
+  // Blocks of the colours that start at block c along block axis b.
+  int blocks_of_colour(int c, int b) const {
+    return std::max(0, (write_blocks_along_[b] - c + write_step_[b] - 1) / write_step_[b]);
+  }
+
+  // The write blocks of level 0, half as many as cells along each divided
+  // axis. Along a periodic axis the first and last blocks are neighbours
+  // (either can write to the other): more than three blocks must come in a
+  // multiple of three, and the colours repeat every three blocks.
+  void lay_out_write_blocks() {
+    const Level& L = level_[0];
+    const int outer = std::clamp(dim_, 1, 3) - 1;
+    for (int b = 0; b < 2; ++b) {
+      const int a = std::max(outer - b, 0);
+      write_axis_[b] = b == 1 && outer == 0 ? 1 : a;  // a 1D grid: one block along y
+      int count = std::max(L.n[write_axis_[b]] / 2, 1);
+      const bool periodic = periodic_[write_axis_[b]];
+      if (periodic && count > 3) count -= count % 3;
+      write_blocks_along_[b] = count;
+      write_step_[b] = b == 0 && !periodic ? 2 : 3;
+    }
+  }
 
   int level_of(double r) const {
     if (!(r > radius_)) return 0;
@@ -227,6 +302,7 @@ class NeighbourGrid {
     }
     cell_start_.assign(total + 1, 0);
     block_filled_.assign(block_total, 0);
+    lay_out_write_blocks();
   }
 
   // Which blocks of cells hold a point: a query whose reach meets only empty
@@ -439,6 +515,9 @@ class NeighbourGrid {
   std::vector<Index> cell_start_, key_, order_;
   std::vector<std::uint8_t> block_filled_;  // per block of cells: 1 if it holds a point
   std::vector<double> xs_, ys_, zs_;
+  std::array<int, 2> write_axis_{2, 1};          // the axes the write blocks divide, outermost first
+  std::array<int, 2> write_blocks_along_{1, 1};  // blocks along each
+  std::array<int, 2> write_step_{2, 3};          // blocks between two of one colour along each
 };
 
 }  // namespace talus
