@@ -40,6 +40,19 @@ class TALUS_API KernelTable {
     const double r = std::sqrt(r2);
     return r > 0.0 ? dw(r) / r : 0.0;
   }
+  // Whether dw_over_r_from_r2 reads the table over r^2 (every smooth kernel).
+  bool gradient_by_r2() const { return gradient_by_r2_; }
+  // The same read for n values of r^2 below support_radius()^2 when
+  // gradient_by_r2(), without the range test: a loop the compiler vectorises.
+  TALUS_PAIR_INLINE void dw_over_r_within_support(const double* __restrict r2, double* __restrict out, int n) const {
+    const double* __restrict t = dw_r_by_r2_.data();
+    const double scale = inv_dr2_;
+    for (int k = 0; k < n; ++k) {
+      const double s = r2[k] * scale;
+      const int cell = static_cast<int>(s);
+      out[k] = t[cell] + (s - cell) * (t[cell + 1] - t[cell]);
+    }
+  }
   // Laplacian-kernel value (0 unless the kernel has one).
   double laplacian(double r) const { return has_laplacian_ ? lookup(lap_, r) : 0.0; }
   bool has_laplacian() const { return has_laplacian_; }

@@ -58,6 +58,108 @@ struct FluidReactions {
   }
 };
 
+// A chunk of particle i's pairs in lanes (structure of arrays): what the
+// traversal found and the kernel's values.
+struct PairLanes {
+  static constexpr int size = 64;
+  int count = 0;
+  Index j[size];
+  double dx[size], dy[size], dz[size], r2[size], r[size], w[size], dw_r[size], inv_r2e[size];
+};
+
+// Each lane's shares for i and for j: local to the evaluation, so the
+// compiler can tell that the terms' reads of the particle fields never meet
+// these stores.
+struct LaneShares {
+  double i_ax[PairLanes::size], i_ay[PairLanes::size], i_az[PairLanes::size], i_drho[PairLanes::size],
+      i_visc[PairLanes::size];
+  double j_ax[PairLanes::size], j_ay[PairLanes::size], j_az[PairLanes::size], j_drho[PairLanes::size],
+      j_visc[PairLanes::size];
+};
+
+// Particle i as the terms of one lane see it: its state by reference to a
+// local copy (the same loads in every lane, hoisted out of the loop) and the
+// sums of that lane's pair alone, so that the lanes share no accumulator.
+// The members are those the fluid terms read (fluid_terms.hpp).
+template <class S>
+struct LaneSums {
+  const Vec3& v;
+  const double &m, &rho, &inv_rho, &p, &c, &mu, &kh;
+  const std::int32_t& mat;
+  Vec3 acc;
+  double drho = 0.0, visc = 0.0;
+  explicit LaneSums(const S& s)
+      : v(s.v), m(s.m), rho(s.rho), inv_rho(s.inv_rho), p(s.p), c(s.c), mu(s.mu), kh(s.kh), mat(s.mat) {}
+};
+
+// Evaluates the lanes' pairs: the kernel's values, then every term's shares
+// lane by lane (loops without calls or branches on the data, which the
+// compiler vectorises), then i's shares summed and j's added to out, in lane
+// order. Not inlined into the traversal: apart, each keeps its values in
+// registers.
+template <bool NeedValue, bool NeedGradient, class S, class... Terms>
+[[gnu::noinline]] void run_lanes(PairLanes& L, const KernelTable& kernel, double eta2, S& sums, FluidReactions out,
+                                 const Terms&... terms) {
+  const int n = L.count;
+  if constexpr (NeedValue)
+    for (int k = 0; k < n; ++k) {
+      L.r[k] = std::sqrt(L.r2[k]);
+      L.w[k] = kernel.w(L.r[k]);
+    }
+  if constexpr (NeedGradient) {
+    if (kernel.gradient_by_r2())
+      kernel.dw_over_r_within_support(L.r2, L.dw_r, n);
+    else
+      for (int k = 0; k < n; ++k) L.dw_r[k] = kernel.dw_over_r_from_r2(L.r2[k]);
+    for (int k = 0; k < n; ++k) L.inv_r2e[k] = 1.0 / (L.r2[k] + eta2);
+  }
+  LaneShares out_of;
+  const S state = sums;  // a local copy: no store in the loop can alias it
+  // The terms, lane by lane: the loop tests/sph/vectorised_pair_lanes.cmake checks.
+  for (int k = 0; k < n; ++k) {
+    Pair q;
+    q.j = L.j[k];
+    q.dx = Vec3{L.dx[k], L.dy[k], L.dz[k]};
+    q.r2 = L.r2[k];
+    if constexpr (NeedValue) {
+      q.r = L.r[k];
+      q.w = L.w[k];
+    }
+    if constexpr (NeedGradient) {
+      q.dw_r = L.dw_r[k];
+      q.inv_r2e = L.inv_r2e[k];
+    }
+    LaneSums<S> si(state);
+    PairReaction rj;
+    (terms.mutual(q, si, rj), ...);
+    out_of.i_ax[k] = si.acc.x;
+    out_of.i_ay[k] = si.acc.y;
+    out_of.i_az[k] = si.acc.z;
+    out_of.i_drho[k] = si.drho;
+    out_of.i_visc[k] = si.visc;
+    out_of.j_ax[k] = rj.acc.x;
+    out_of.j_ay[k] = rj.acc.y;
+    out_of.j_az[k] = rj.acc.z;
+    out_of.j_drho[k] = rj.drho;
+    out_of.j_visc[k] = rj.visc;
+  }
+  // i's shares summed in registers (sums itself lives in memory), j's added.
+  const LaneShares& o = out_of;
+  double ax = 0.0, ay = 0.0, az = 0.0, drho = 0.0, visc = sums.visc;
+  for (int k = 0; k < n; ++k) {
+    ax += o.i_ax[k];
+    ay += o.i_ay[k];
+    az += o.i_az[k];
+    drho += o.i_drho[k];
+    visc = std::max(visc, o.i_visc[k]);
+    out.add(L.j[k], Vec3{o.j_ax[k], o.j_ay[k], o.j_az[k]}, o.j_drho[k], o.j_visc[k]);
+  }
+  sums.acc += Vec3{ax, ay, az};
+  sums.drho += drho;
+  sums.visc = visc;
+  L.count = 0;
+}
+
 // Runs the mutual pass over every point binned in `cells` (set A = set B; a
 // grid of one level whose radius() covers the kernel's support). start(i) ->
 // Sums (with acc, drho, visc zero), every term's mutual() per pair, then out =
@@ -80,7 +182,9 @@ std::uint64_t mutual_pair_pass(const NeighbourGrid& cells, const KernelTable& ke
   const double eta2 = pair_eta2(kernel.h());
   const int threads = n >= parallel_min ? omp_get_max_threads() : 1;
   std::uint64_t pairs = 0;
-  auto pairs_from = [&](std::size_t slot) {
+  // Particle i's pairs with its later neighbours, gathered into lanes and
+  // evaluated a chunk at a time; returns the evaluations (twice the pairs).
+  auto pairs_from = [&](std::size_t slot, PairLanes& lanes) __attribute__((always_inline)) {
     const Index i = order[slot];
     auto sums = start(i);
     std::uint64_t count = 0;
@@ -90,28 +194,22 @@ std::uint64_t mutual_pair_pass(const NeighbourGrid& cells, const KernelTable& ke
     cells.for_each_later_neighbour(slot, radius, [&](Index j, const Vec3& dx, double r2)
                                                      __attribute__((always_inline)) {
       if (halo_i && j >= owned) return;
-      Pair p;
-      p.j = j;
-      p.dx = dx;
-      p.r2 = r2;
-      if constexpr (need_value) {
-        p.r = std::sqrt(r2);
-        p.w = kernel.w(p.r);
-      }
-      if constexpr (need_gradient) {
-        p.dw_r = kernel.dw_over_r_from_r2(r2);
-        p.inv_r2e = 1.0 / (r2 + eta2);
-      }
+      const int k = lanes.count;
+      lanes.j[k] = j;
+      lanes.dx[k] = dx.x;
+      lanes.dy[k] = dx.y;
+      lanes.dz[k] = dx.z;
+      lanes.r2[k] = r2;
       ++count;
-      PairReaction rj;
-      (terms.mutual(p, sums, rj), ...);
-      out.add(j, rj.acc, rj.drho, rj.visc);
+      if (++lanes.count == PairLanes::size) run_lanes<need_value, need_gradient>(lanes, kernel, eta2, sums, out, terms...);
     });
+    if (lanes.count > 0) run_lanes<need_value, need_gradient>(lanes, kernel, eta2, sums, out, terms...);
     out.add(i, sums.acc, sums.drho, sums.visc);
     return 2 * count;
   };
 #pragma omp parallel num_threads(threads) reduction(+ : pairs)
   {
+    PairLanes lanes;
 #pragma omp for schedule(static)
     for (std::int64_t k = 0; k < static_cast<std::int64_t>(n); ++k) out.clear_one(static_cast<Index>(k));
     for (int colour = 0; colour < cells.write_colours(); ++colour) {
@@ -120,7 +218,7 @@ std::uint64_t mutual_pair_pass(const NeighbourGrid& cells, const KernelTable& ke
 #pragma omp for schedule(dynamic, 1)
       for (std::int64_t b = 0; b < static_cast<std::int64_t>(cells.write_blocks(colour)); ++b)
         cells.for_each_write_block_run(colour, static_cast<std::size_t>(b), [&](std::size_t begin, std::size_t end) {
-          for (std::size_t slot = begin; slot < end; ++slot) pairs += pairs_from(slot);
+          for (std::size_t slot = begin; slot < end; ++slot) pairs += pairs_from(slot, lanes);
         });
     }
 #pragma omp for schedule(static)

@@ -1,0 +1,33 @@
+// The mutual pass's lane loop instantiated with the fluid terms of a scene:
+// compiled by vectorised_pair_lanes.cmake, whose test reads the compiler's
+// vectorisation report. TERMS 1: the dam break's set (pressure, artificial
+// viscosity, continuity, Fourtakas diffusion); TERMS 2: laminar viscosity
+// with continuity and Molteni diffusion.
+#include "talus/sph/fluid_terms.hpp"
+#include "talus/sph/mutual_pass.hpp"
+
+namespace talus {
+
+struct LaneTestSums {
+  Vec3 v;
+  double m = 0, rho = 0, inv_rho = 0, p = 0, c = 0, mu = 0, kh = 0;
+  std::int32_t mat = 0;
+  Vec3 acc;
+  double drho = 0, visc = 0;
+};
+
+void evaluate_lanes(sph::PairLanes& lanes, const KernelTable& kernel, LaneTestSums& sums, sph::FluidReactions out,
+                    const sph::Neighbours& nb, const double* mu_of_material) {
+  const sph::PressureForce pressure{nb};
+  const sph::Continuity continuity{nb};
+#if TERMS == 1
+  const sph::ArtificialViscosity viscosity{nb, 0.01};
+  const sph::DensityDiffusion<true> diffusion{nb, 0.1, {0, 0, -9.81}};
+#else
+  const sph::LaminarViscosity<false> viscosity{nb, mu_of_material, 1e-6};
+  const sph::DensityDiffusion<false> diffusion{nb, 0.1, {0, 0, -9.81}};
+#endif
+  sph::run_lanes<false, true>(lanes, kernel, 0.01, sums, out, pressure, viscosity, continuity, diffusion);
+}
+
+}  // namespace talus
