@@ -17,6 +17,8 @@
 //   template <class S, class R> void mutual(const Pair& q, S& s, R& r) const
 // that adds i's share to s and j's (q.j) to r, a PairReaction the pass adds
 // to j once all terms of the pair have run (one store per pair, not per term).
+// s is a LaneSums: i's state as the fluid terms read it (v, m, rho, inv_rho,
+// p, c, mu, kh, mat) and the sums acc, drho, visc of that one pair.
 #pragma once
 
 #include <algorithm>
