@@ -16,6 +16,7 @@
 
 #include "cubic_spline.hpp"
 #include "muller.hpp"
+#include "talus/error.hpp"
 #include "talus/kernel_table.hpp"
 #include "talus/neighbour_grid.hpp"
 #include "talus/params.hpp"
@@ -304,6 +305,29 @@ TEST_P(MutualPass, SkipsPairsOfTwoHaloCopiesAndKeepsTheOwnedRates) {
   }
   EXPECT_LT(owned_pairs, all_pairs);
   EXPECT_GT(owned_pairs, all_pairs / 2);
+}
+
+// The write blocks cover level 0 only: a grid that binned points on a
+// higher level (per-point radii) is refused, not half evaluated.
+TEST(MutualPassGrid, RefusesAGridWithPointsBeyondItsFirstLevel) {
+  const Cloud c = make_cloud(3, 8, {false, false, false}, 5u);
+  const ParamValues none;
+  const kernels::CubicSpline spline(none);
+  const KernelTable kernel(spline, 3, 1.3 * c.dp);
+  std::vector<double> radius(c.x.size(), kernel.support_radius());
+  radius[7] = 4.0 * kernel.support_radius();
+  NeighbourGrid grid;
+  grid.configure(3, c.lo, c.hi, kernel.support_radius());
+  grid.build(c.x, radius);
+  Rates r{std::vector<Vec3>(c.x.size()), std::vector<double>(c.x.size()), std::vector<double>(c.x.size())};
+  auto start = [&](Index i) { return start_of(c, i); };
+  EXPECT_THROW(sph::mutual_pair_pass(grid, kernel, {r.acc.data(), r.drho.data(), r.visc.data()}, c.x.size(), start,
+                                     [](Index) {}, sph::PressureForce{c.nb()}),
+               RunError);
+  grid.build(c.x);
+  EXPECT_GT(sph::mutual_pair_pass(grid, kernel, {r.acc.data(), r.drho.data(), r.visc.data()}, c.x.size(), start,
+                                  [](Index) {}, sph::PressureForce{c.nb()}),
+            0u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Layouts, MutualPass,

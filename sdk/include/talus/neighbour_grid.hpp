@@ -180,6 +180,11 @@ class NeighbourGrid {
   // the result is the same on any number of threads.
   int write_colours() const { return write_step_[0] * write_step_[1]; }
 
+  // Whether every binned point is on level 0 (the write blocks cover only it).
+  bool one_level() const {
+    return std::all_of(level_max_.begin() + 1, level_max_.end(), [](double r) { return !(r > 0.0); });
+  }
+
   // The number of blocks of a colour.
   std::size_t write_blocks(int colour) const {
     return static_cast<std::size_t>(blocks_of_colour(colour % write_step_[0], 0)) *

@@ -179,8 +179,8 @@ std::uint64_t mutual_pair_pass(const NeighbourGrid& cells, const KernelTable& ke
   const std::span<const Index> order = cells.order();
   const std::size_t n = order.size();
   const double radius = kernel.support_radius();
-  if (radius > cells.radius())
-    throw RunError("mutual pair pass: the kernel's support exceeds the neighbour grid's search radius");
+  if (radius > cells.radius() || !cells.one_level())
+    throw RunError("mutual pair pass: the neighbour grid must have one level whose radius covers the kernel's support");
   const double eta2 = pair_eta2(kernel.h());
   const int threads = n >= parallel_min ? omp_get_max_threads() : 1;
   std::uint64_t pairs = 0;
