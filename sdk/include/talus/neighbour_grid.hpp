@@ -168,10 +168,10 @@ class NeighbourGrid {
   // Write blocks, for a pass that adds each pair's share to both of its
   // points from several threads with no copy of the output per thread (a grid
   // of one level, searched within radius()). The cells are grouped, along the
-  // two outermost axes of the sorted order (y and z in 3D), into blocks at
+  // outer axes of the sorted order (z and y in 3D, y in 2D), into blocks at
   // least two cells (one search radius) wide, whole along x; runs of a block
-  // are then whole rows of cells, and two threads seldom write to one cache
-  // line. A point's later neighbours lie in its own block or the blocks next
+  // are then whole rows of cells, which keeps the order of the scan close to
+  // the sorted order, and two threads seldom write to one cache line. A point's later neighbours lie in its own block or the blocks next
   // to it, and along the outermost closed axis only in its own or the next
   // one (later slots are not lower there). Blocks of one colour are three
   // blocks apart (two along that axis) and share no neighbour: a colour's
@@ -255,20 +255,25 @@ class NeighbourGrid {
   }
 
   // The write blocks of level 0, half as many as cells along each divided
-  // axis. Along a periodic axis the first and last blocks are neighbours
+  // axis (z and y in 3D, y in 2D). Along a periodic axis the first and last blocks are neighbours
   // (either can write to the other): more than three blocks must come in a
   // multiple of three, and the colours repeat every three blocks.
   void lay_out_write_blocks() {
     const Level& L = level_[0];
     const int outer = std::clamp(dim_, 1, 3) - 1;
     for (int b = 0; b < 2; ++b) {
-      const int a = std::max(outer - b, 0);
-      write_axis_[b] = b == 1 && outer == 0 ? 1 : a;  // a 1D grid: one block along y
-      int count = std::max(L.n[write_axis_[b]] / 2, 1);
-      const bool periodic = periodic_[write_axis_[b]];
-      if (periodic && count > 3) count -= count % 3;
+      const int a = outer - b;
+      if (a < 1) {  // x is never divided: a block's runs stay whole rows
+        write_axis_[b] = 0;
+        write_blocks_along_[b] = 1;
+        write_step_[b] = 1;
+        continue;
+      }
+      write_axis_[b] = a;
+      int count = std::max(L.n[a] / 2, 1);
+      if (periodic_[a] && count > 3) count -= count % 3;
       write_blocks_along_[b] = count;
-      write_step_[b] = b == 0 && !periodic ? 2 : 3;
+      write_step_[b] = b == 0 && !periodic_[a] ? 2 : 3;
     }
   }
 
