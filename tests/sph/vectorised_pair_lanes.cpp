@@ -3,20 +3,14 @@
 // vectorisation report. TERMS 1: the dam break's set (pressure, artificial
 // viscosity, continuity, Fourtakas diffusion); TERMS 2: laminar viscosity
 // with continuity and Molteni diffusion.
+#include "fluid_sums.hpp"
 #include "talus/sph/fluid_terms.hpp"
 #include "talus/sph/mutual_pass.hpp"
 
 namespace talus {
 
-struct LaneTestSums {
-  Vec3 v;
-  double m = 0, rho = 0, inv_rho = 0, p = 0, c = 0, mu = 0, kh = 0;
-  std::int32_t mat = 0;
-  Vec3 acc;
-  double drho = 0, visc = 0;
-};
-
-void evaluate_lanes(sph::PairLanes& lanes, const KernelTable& kernel, LaneTestSums& sums, sph::FluidReactions out,
+// With the wcsph stage's own i-state and sums, as its force pass has them.
+void evaluate_lanes(sph::PairLanes& lanes, const KernelTable& kernel, wcsph::FluidSums& sums, sph::FluidReactions out,
                     const sph::Neighbours& nb, const double* mu_of_material) {
   const sph::PressureForce pressure{nb};
   const sph::Continuity continuity{nb};
