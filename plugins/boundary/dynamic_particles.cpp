@@ -291,13 +291,10 @@ void DynamicParticles::initial_density(World& world) {
   ParticleStore& fs = world.fluid;
   if (fs.size() == 0) return;
   WallFields w(world.boundary, first_, count_);
-  const auto fx = fs.position();
   const auto fp = fs.scalar("pressure");
   const auto frho = fs.scalar("density");
   const KernelTable& k = *settings_.kernel;
-  NeighbourGrid fluid_cells;
-  fluid_cells.configure(world.dim, settings_.lo, settings_.hi, k.support_radius(), world.periodic);
-  fluid_cells.build(fx);
+  const NeighbourGrid& fluid_cells = *settings_.cells;
   const Vec3 g = world.gravity;
   const std::span<const Vec3> wx = w.x;
   auto start = [&](Index) { return sph::ExtrapolationSums{}; };

@@ -314,11 +314,8 @@ void BlockParticles::initial_density(World& world) {
   ParticleStore& fs = world.fluid;
   if (fs.size() == 0) return;
   ParticleStore& s = world.boundary;
-  const auto fx = fs.position();
   const KernelTable& k = *settings_.kernel;
-  NeighbourGrid fluid_cells;
-  fluid_cells.configure(world.dim, settings_.lo, settings_.hi, k.support_radius(), world.periodic);
-  fluid_cells.build(fx);
+  const NeighbourGrid& fluid_cells = *settings_.cells;
   const Material& mat = world.materials[material_];
   auto rho = s.scalar("density");
   for (std::size_t blk = 0; blk < blocks_.size(); ++blk) {

@@ -192,7 +192,7 @@ void WcsphStage::setup(World& world) {
   cells_.configure(world.dim, lo, hi, radius, world.periodic);
 
   settings_ = sph::FluidSettings{&world.kernel, density_ == DensityMode::summation, lo, hi,
-                                 viscosity_ != ViscosityModel::artificial};
+                                 viscosity_ != ViscosityModel::artificial, &cells_};
   period_ = periods(world);
   pair_terms_ = world.pair_terms;
   for (sph::PairTerm* term : pair_terms_) term->setup(world);

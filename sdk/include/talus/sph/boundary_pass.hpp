@@ -54,6 +54,9 @@ struct FluidSettings {
   // impose with a mirrored WallSet::viscous_velocity; when false (artificial
   // viscosity) a model gives its walls' own velocity, or a free-slip one.
   bool viscous_velocity = false;
+  // The fluid's neighbour grid, built on the positions bind() sees (for the
+  // walls' initial state; the stage rebuilds it every step, so not kept).
+  const NeighbourGrid* cells = nullptr;
 };
 
 // Read-only view of the fluid for one pass; `cells` is the fluid's
