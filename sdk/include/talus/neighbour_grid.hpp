@@ -34,9 +34,14 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <span>
 #include <string>
 #include <vector>
+
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+#include <immintrin.h>
+#endif
 
 #include "talus/config.hpp"
 #include "talus/error.hpp"
@@ -378,9 +383,11 @@ class NeighbourGrid {
   static constexpr int far_image = 27;  // an image beyond the neighbouring periods
   // Hits of one query: sorted index and which periodic image (shift) it was
   // found in; without periodic axes every shift is zero and is not stored.
+  // A chunk is handed on once it cannot take another full vector of hits.
+  static constexpr int vector_hits = 8;
   struct Hits {
-    Index s[chunk];
-    std::uint8_t image[chunk];
+    Index s[chunk + vector_hits];
+    std::uint8_t image[chunk + vector_hits];
     Vec3 shift[far_image + 1];
     int count = 0;
   };
@@ -413,16 +420,20 @@ class NeighbourGrid {
       if (gz * gz >= r2max) continue;
       int iz = 0;
       const int rz = wrap(L, cz, 2, iz);
+      const std::size_t plane = L.offset + static_cast<std::size_t>(rz) * L.n[1] * L.n[0];
+      // A later-neighbour query skips the rows that end before `first` (half of them) unmeasured.
+      if (cell_start_[plane + static_cast<std::size_t>(L.n[1]) * L.n[0]] <= first) continue;
       for (int cy = y0; cy <= y1; ++cy) {
+        int iy = 0;
+        const int ry = wrap(L, cy, 1, iy);
+        const std::size_t row = plane + static_cast<std::size_t>(ry) * L.n[0];
+        if (cell_start_[row + L.n[0]] <= first) continue;
         const double gy = gap(L, x.y, cy, 1);
         const double rest = r2max - gy * gy - gz * gz;
         if (rest <= 0.0) continue;
-        int iy = 0;
-        const int ry = wrap(L, cy, 1, iy);
         // x-range of cells this row can contribute.
         int x0, x1;
         cell_range(L, x.x, std::sqrt(rest), 0, x0, x1);
-        const std::size_t row = L.offset + (static_cast<std::size_t>(rz) * L.n[1] + ry) * L.n[0];
         if (!periodic_[0]) {
           const int image = Periodic ? image_of(hits, x, f, 0, iy, iz) : 0;
           scan<Periodic>(row + x0, row + x1 + 1, x, image, r2max, first, hits, f);
@@ -479,7 +490,10 @@ class NeighbourGrid {
   }
 
   // Tests the sorted points of cells [c0, c1) from slot `first` on without a
-  // branch on the outcome; hands full chunks to f.
+  // branch on the outcome; hands full chunks to f. With AVX-512, eight points
+  // a test and their hits' slots compressed into place; the remainder one by
+  // one with the same operations in the same order, so a point's outcome does
+  // not depend on where its run starts.
   template <bool Periodic, class F>
   TALUS_PAIR_INLINE void scan(std::size_t c0, std::size_t c1, const Vec3& x, int image, double r2max, Index first,
                               Hits& hits, F& f) const {
@@ -488,13 +502,35 @@ class NeighbourGrid {
     if constexpr (Periodic) q -= hits.shift[image];
     // The count lives in a register: kept in `hits`, every candidate would wait on a store and reload.
     int count = hits.count;
-    for (Index s = std::max(cell_start_[c0], first); s < e; ++s) {
+    Index s = std::max(cell_start_[c0], first);
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+    const __m512d vx = _mm512_set1_pd(q.x), vy = _mm512_set1_pd(q.y), vz = _mm512_set1_pd(q.z),
+                  vmax = _mm512_set1_pd(r2max);
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    for (; s + vector_hits <= e; s += vector_hits) {
+      const __m512d dx = _mm512_sub_pd(vx, _mm512_loadu_pd(&xs_[s]));
+      const __m512d dy = _mm512_sub_pd(vy, _mm512_loadu_pd(&ys_[s]));
+      const __m512d dz = _mm512_sub_pd(vz, _mm512_loadu_pd(&zs_[s]));
+      const __m512d r2 = _mm512_fmadd_pd(dz, dz, _mm512_fmadd_pd(dy, dy, _mm512_mul_pd(dx, dx)));
+      const __mmask8 within = _mm512_cmp_pd_mask(r2, vmax, _CMP_LT_OQ);
+      const __m256i slots = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(s)), lane);
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(&hits.s[count]), _mm256_maskz_compress_epi32(within, slots));
+      if constexpr (Periodic) std::memset(&hits.image[count], image, vector_hits);
+      count += __builtin_popcount(within);
+      if (count > chunk - vector_hits) {
+        hits.count = count;
+        flush<Periodic>(hits, x, f);
+        count = 0;
+      }
+    }
+#endif
+    for (; s < e; ++s) {
       const double dx = q.x - xs_[s], dy = q.y - ys_[s], dz = q.z - zs_[s];
-      const double r2 = dx * dx + dy * dy + dz * dz;
+      const double r2 = std::fma(dz, dz, std::fma(dy, dy, dx * dx));
       hits.s[count] = s;
       if constexpr (Periodic) hits.image[count] = static_cast<std::uint8_t>(image);
       count += r2 < r2max ? 1 : 0;
-      if (count == chunk) {
+      if (count > chunk - vector_hits) {
         hits.count = count;
         flush<Periodic>(hits, x, f);
         count = 0;
