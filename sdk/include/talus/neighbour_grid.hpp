@@ -405,7 +405,10 @@ class NeighbourGrid {
     flush<Periodic>(hits, x, f);
   }
 
-  // The cells of level L within `reach` of x, row by row.
+  // The cells of level L within `reach` of x along each axis, row by row.
+  // Every row of that block is scanned over the same cells along x: culling
+  // rows and narrowing each to its chord of the sphere cost more (a root and
+  // floors a row) than the distance tests of the candidates they would save.
   template <bool Periodic, class F>
   TALUS_PAIR_INLINE void query_level(const Level& L, const Vec3& x, double reach, Index first, Hits& hits,
                                      F& f) const {
@@ -418,8 +421,6 @@ class NeighbourGrid {
     int x0, x1;
     cell_range(L, x.x, reach, 0, x0, x1);
     for (int cz = z0; cz <= z1; ++cz) {
-      const double gz = dim_ == 3 ? gap(L, x.z, cz, 2) : 0.0;
-      if (gz * gz >= r2max) continue;
       int iz = 0;
       const int rz = wrap(L, cz, 2, iz);
       const std::size_t plane = L.offset + static_cast<std::size_t>(rz) * L.n[1] * L.n[0];
@@ -430,12 +431,6 @@ class NeighbourGrid {
         const int ry = wrap(L, cy, 1, iy);
         const std::size_t row = plane + static_cast<std::size_t>(ry) * L.n[0];
         if (cell_start_[row + L.n[0]] <= first) continue;
-        const double gy = gap(L, x.y, cy, 1);
-        const double rest = r2max - gy * gy - gz * gz;
-        if (rest <= 0.0) continue;
-        // The cells along x within reach of x: one range for every row. Narrowing
-        // it to each row's chord costs a root and two floors a row, more than
-        // the distance tests of the candidates it would save.
         if (!periodic_[0]) {
           const int image = Periodic ? image_of(hits, x, f, 0, iy, iz) : 0;
           scan<Periodic>(row + x0, row + x1 + 1, x, image, r2max, first, hits, f);
@@ -539,17 +534,6 @@ class NeighbourGrid {
       }
     }
     hits.count = count;
-  }
-
-  // Distance along axis a from v to the slab of (unwrapped) cell k; 0 inside.
-  // The edge cells of a closed axis extend to infinity (they hold the points
-  // beyond the grid).
-  double gap(const Level& L, double v, int k, int a) const {
-    const double c0 = lo_[a] + k * L.cell[a], c1 = c0 + L.cell[a];
-    const bool open_below = !periodic_[a] && k <= 0, open_above = !periodic_[a] && k >= L.n[a] - 1;
-    if (v < c0 && !open_below) return c0 - v;
-    if (v > c1 && !open_above) return v - c1;
-    return 0.0;
   }
 
   int dim_ = 3;
