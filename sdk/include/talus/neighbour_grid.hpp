@@ -335,16 +335,10 @@ class NeighbourGrid {
   }
 
   // Whether any block within the cell ranges of a query holds a point (closed axes only).
-  bool any_filled_block(const Level& L, const Vec3& x, double reach) const {
-    int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-    for (int a = 0; a < dim_ && a < 3; ++a) {
-      cell_range(L, x[a], reach, a, lo[a], hi[a]);
-      lo[a] /= block_cells;
-      hi[a] /= block_cells;
-    }
-    for (int bz = lo[2]; bz <= hi[2]; ++bz)
-      for (int by = lo[1]; by <= hi[1]; ++by)
-        for (int bx = lo[0]; bx <= hi[0]; ++bx)
+  bool any_filled_block(const Level& L, const int (&first)[3], const int (&last)[3]) const {
+    for (int bz = first[2] / block_cells; bz <= last[2] / block_cells; ++bz)
+      for (int by = first[1] / block_cells; by <= last[1] / block_cells; ++by)
+        for (int bx = first[0] / block_cells; bx <= last[0] / block_cells; ++bx)
           if (block_filled_[L.block_index(bx, by, bz)]) return true;
     return false;
   }
@@ -412,14 +406,13 @@ class NeighbourGrid {
   template <bool Periodic, class F>
   TALUS_PAIR_INLINE void query_level(const Level& L, const Vec3& x, double reach, Index first, Hits& hits,
                                      F& f) const {
+    int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    for (int a = 0; a < dim_ && a < 3; ++a) cell_range(L, x[a], reach, a, lo[a], hi[a]);
+    // A point binned here (a later-neighbour query) always finds its own block filled.
     if constexpr (!Periodic)
-      if (!any_filled_block(L, x, reach)) return;
+      if (first == 0 && !any_filled_block(L, lo, hi)) return;
     const double r2max = reach * reach;
-    int z0 = 0, z1 = 0, y0, y1;
-    if (dim_ == 3) cell_range(L, x.z, reach, 2, z0, z1);
-    cell_range(L, x.y, reach, 1, y0, y1);
-    int x0, x1;
-    cell_range(L, x.x, reach, 0, x0, x1);
+    const int x0 = lo[0], x1 = hi[0], y0 = lo[1], y1 = hi[1], z0 = lo[2], z1 = hi[2];
     for (int cz = z0; cz <= z1; ++cz) {
       int iz = 0;
       const int rz = wrap(L, cz, 2, iz);
