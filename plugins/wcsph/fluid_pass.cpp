@@ -30,7 +30,7 @@ struct PassContext {
 };
 
 template <class... Terms>
-std::uint64_t run_force_pass(const PassContext& ctx, const Terms&... terms) {
+sph::MutualPassResult run_force_pass(const PassContext& ctx, const Terms&... terms) {
   FluidFields& f = ctx.f;
   const double* mu = ctx.mu;
   const Vec3 g = ctx.gravity;
@@ -47,14 +47,18 @@ std::uint64_t run_force_pass(const PassContext& ctx, const Terms&... terms) {
     s.mat = f.mat[i];
     return s;
   };
-  auto finish = [&](Index i) { f.a[i] += g; };
-  const sph::FluidReactions out{f.a.data(), f.drho.data(), f.visc.data()};
+  // visc_rate starts at zero for the wall passes and pair terms, which add their pairs' bounds to it.
+  auto finish = [&](Index i) {
+    f.a[i] += g;
+    f.visc[i] = 0.0;
+  };
+  const sph::FluidReactions out{f.a.data(), f.drho.data()};
   return sph::mutual_pair_pass(ctx.cells, ctx.world.kernel, out, ctx.world.fluid.owned_size(), start, finish,
                                terms...);
 }
 
 template <class... Terms>
-std::uint64_t with_density_terms(const PassContext& ctx, DensityMode density, Diffusion diffusion, double delta_h_c0,
+sph::MutualPassResult with_density_terms(const PassContext& ctx, DensityMode density, Diffusion diffusion, double delta_h_c0,
                                  const Terms&... terms) {
   const sph::Neighbours nb = ctx.nb;
   if (density == DensityMode::summation) return run_force_pass(ctx, terms...);
@@ -66,7 +70,7 @@ std::uint64_t with_density_terms(const PassContext& ctx, DensityMode density, Di
     case Diffusion::fourtakas:
       return run_force_pass(ctx, terms..., cont, sph::DensityDiffusion<true>{nb, delta_h_c0, ctx.gravity});
   }
-  return 0;
+  return {};
 }
 
 }  // namespace
@@ -95,9 +99,13 @@ std::uint64_t WcsphStage::fluid_pass(World& world) {
                         world.gravity, nb};
   const sph::PressureForce pressure{nb};
   const double delta_h_c0 = delta_ * h_ * c0_max_;
-  return with_viscosity_term<Neighbour::fluid>(viscosity_settings(world), nb, nb, [&](const auto& viscous) {
-    return with_density_terms(ctx, density_, diffusion_, delta_h_c0, pressure, viscous);
+  sph::MutualPassResult result;
+  with_viscosity_term<Neighbour::fluid>(viscosity_settings(world), nb, nb, [&](const auto& viscous) {
+    result = with_density_terms(ctx, density_, diffusion_, delta_h_c0, pressure, viscous);
+    return result.evaluations;
   });
+  fluid_visc_max_ = result.visc_max;
+  return result.evaluations;
 }
 
 void WcsphStage::density_summation(World& world) {

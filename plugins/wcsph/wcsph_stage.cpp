@@ -236,7 +236,7 @@ double WcsphStage::stable_time_step(World& world) {
   const auto a = world.fluid.vector("acceleration");
   const auto c = world.fluid.scalar("sound_speed");
   const auto visc = world.fluid.scalar("visc_rate");
-  double a_max = 0.0, c_max = 0.0, visc_max = 0.0;
+  double a_max = 0.0, c_max = 0.0, visc_max = fluid_visc_max_;
 #pragma omp parallel for schedule(static) reduction(max : a_max, c_max, visc_max) if (owned >= 4096)
   for (std::size_t i = 0; i < owned; ++i) {
     a_max = std::max(a_max, norm2(a[i]));

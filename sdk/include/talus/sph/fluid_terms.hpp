@@ -7,7 +7,9 @@
 // the pass's Sums (duck-typed members: v, m, rho, inv_rho, p, c, mu, kh, mat;
 // the sums acc, drho, visc). The terms of the fluid-fluid pass also have the
 // mutual form of sph/mutual_pass.hpp: one evaluation per pair, j's share
-// added to a PairReaction r.
+// added to a PairReaction r. A pair's |v_ij . x_ij|/(r^2 + eta^2) is the same
+// for j, and only the largest of any pair bounds the time step: s.visc alone
+// takes it.
 #pragma once
 
 #include <algorithm>
@@ -79,7 +81,6 @@ struct ArtificialViscosity {
     const double rate = dot(s.v - nb.velocity[j], q.dx) * q.inv_r2e;
     const double speed = std::abs(rate);
     s.visc = std::max(s.visc, speed);
-    r.visc = std::max(r.visc, speed);
     const double approaching = std::min(rate, 0.0);
     const Vec3 f = q.grad() * (alpha_h * approaching * (s.c + nb.sound_speed[j]) / (s.rho + nb.density[j]));
     s.acc += f * nb.mass[j];
@@ -124,7 +125,6 @@ struct LaminarViscosity {
     const Vec3 vij = s.v - nb.velocity[j];
     const double speed = std::abs(dot(vij, q.dx) * q.inv_r2e);
     s.visc = std::max(s.visc, speed);
-    r.visc = std::max(r.visc, speed);
     const Vec3 f = vij * ((s.mu + mu_of_material[nb.material[j]]) * (s.inv_rho * nb.inv_density[j]) *
                           laminar_weight(q, eta2));
     s.acc += f * nb.mass[j];
@@ -172,7 +172,6 @@ struct LaminarViscosityField {
     const Vec3 vij = s.v - nb.velocity[j];
     const double speed = std::abs(dot(vij, q.dx) * q.inv_r2e);
     s.visc = std::max(s.visc, speed);
-    r.visc = std::max(r.visc, speed);
     const Vec3 f = vij * (mu_pair * (s.inv_rho * nb.inv_density[j]) * laminar_weight(q, eta2));
     s.acc += f * nb.mass[j];
     r.acc -= f * s.m;

@@ -35,29 +35,33 @@
 
 namespace talus::sph {
 
-// What one pair gives its later particle j (a maximum for visc).
+// What one pair gives its later particle j.
 struct PairReaction {
   Vec3 acc;
   double drho = 0.0;
-  double visc = 0.0;
 };
 
-// Per-particle accumulators of a force pass: acceleration, density rate, and
-// the largest |v_ij . x_ij|/(r^2 + eta^2) (a maximum, not a sum).
+// Per-particle accumulators of a force pass: acceleration and density rate.
 struct FluidReactions {
   Vec3* acc = nullptr;
   double* drho = nullptr;
-  double* visc = nullptr;
-  TALUS_PAIR_INLINE void add(Index k, const Vec3& a, double d, double v) const {
+  TALUS_PAIR_INLINE void add(Index k, const Vec3& a, double d) const {
     acc[k] += a;
     drho[k] += d;
-    visc[k] = std::max(visc[k], v);
   }
   void clear_one(Index k) const {
     acc[k] = Vec3{};
     drho[k] = 0.0;
-    visc[k] = 0.0;
   }
+};
+
+// What a mutual pass returns: its particle-neighbour evaluations (twice the
+// pairs, as a gather pass would count them) and the largest
+// |v_ij . x_ij|/(r^2 + eta^2) of any pair (the time-step bound; the same for
+// i and j, so the largest over every particle's later pairs).
+struct MutualPassResult {
+  std::uint64_t evaluations = 0;
+  double visc_max = 0.0;
 };
 
 // A chunk of particle i's pairs in lanes (structure of arrays): what the
@@ -75,8 +79,7 @@ struct PairLanes {
 struct LaneShares {
   double i_ax[PairLanes::size], i_ay[PairLanes::size], i_az[PairLanes::size], i_drho[PairLanes::size],
       i_visc[PairLanes::size];
-  double j_ax[PairLanes::size], j_ay[PairLanes::size], j_az[PairLanes::size], j_drho[PairLanes::size],
-      j_visc[PairLanes::size];
+  double j_ax[PairLanes::size], j_ay[PairLanes::size], j_az[PairLanes::size], j_drho[PairLanes::size];
 };
 
 // Particle i as the terms of one lane see it: its state by reference to a
@@ -143,7 +146,6 @@ template <bool NeedValue, bool NeedGradient, class S, class... Terms>
     out_of.j_ay[k] = rj.acc.y;
     out_of.j_az[k] = rj.acc.z;
     out_of.j_drho[k] = rj.drho;
-    out_of.j_visc[k] = rj.visc;
   }
   // i's shares summed in registers (sums itself lives in memory), j's added.
   const LaneShares& o = out_of;
@@ -154,7 +156,7 @@ template <bool NeedValue, bool NeedGradient, class S, class... Terms>
     az += o.i_az[k];
     drho += o.i_drho[k];
     visc = std::max(visc, o.i_visc[k]);
-    out.add(L.j[k], Vec3{o.j_ax[k], o.j_ay[k], o.j_az[k]}, o.j_drho[k], o.j_visc[k]);
+    out.add(L.j[k], Vec3{o.j_ax[k], o.j_ay[k], o.j_az[k]}, o.j_drho[k]);
   }
   sums.acc += Vec3{ax, ay, az};
   sums.drho += drho;
@@ -169,10 +171,9 @@ template <bool NeedValue, bool NeedGradient, class S, class... Terms>
 // particle i's total. Points from `owned` on are halo copies of another MPI
 // rank's particles (talus/parallel.hpp): their totals are not wanted, so
 // pairs of two of them are skipped, and only their pairs with owned points
-// count. Returns the number of particle-neighbour evaluations (twice the
-// pairs), as a gather pass would count them.
+// count (in the result's visc_max too).
 template <class Start, class Finish, class... Terms>
-std::uint64_t mutual_pair_pass(const NeighbourGrid& cells, const KernelTable& kernel, FluidReactions out,
+MutualPassResult mutual_pair_pass(const NeighbourGrid& cells, const KernelTable& kernel, FluidReactions out,
                                std::size_t owned, Start&& start, Finish&& finish, const Terms&... terms) {
   constexpr bool need_value = (Terms::uses_value || ...);
   constexpr bool need_gradient = (Terms::uses_gradient || ...);
@@ -184,9 +185,10 @@ std::uint64_t mutual_pair_pass(const NeighbourGrid& cells, const KernelTable& ke
   const double eta2 = pair_eta2(kernel.h());
   const int threads = n >= parallel_min ? omp_get_max_threads() : 1;
   std::uint64_t pairs = 0;
+  double visc_max = 0.0;
   // Particle i's pairs with its later neighbours, gathered into lanes and
   // evaluated a chunk at a time; returns the evaluations (twice the pairs).
-  auto pairs_from = [&](std::size_t slot, PairLanes& lanes) __attribute__((always_inline)) {
+  auto pairs_from = [&](std::size_t slot, PairLanes& lanes, double& visc) __attribute__((always_inline)) {
     const Index i = order[slot];
     auto sums = start(i);
     std::uint64_t count = 0;
@@ -206,10 +208,11 @@ std::uint64_t mutual_pair_pass(const NeighbourGrid& cells, const KernelTable& ke
       if (++lanes.count == PairLanes::size) run_lanes<need_value, need_gradient>(lanes, kernel, eta2, sums, out, terms...);
     });
     if (lanes.count > 0) run_lanes<need_value, need_gradient>(lanes, kernel, eta2, sums, out, terms...);
-    out.add(i, sums.acc, sums.drho, sums.visc);
+    out.add(i, sums.acc, sums.drho);
+    visc = std::max(visc, sums.visc);
     return 2 * count;
   };
-#pragma omp parallel num_threads(threads) reduction(+ : pairs)
+#pragma omp parallel num_threads(threads) reduction(+ : pairs) reduction(max : visc_max)
   {
     PairLanes lanes;
 #pragma omp for schedule(static)
@@ -220,13 +223,13 @@ std::uint64_t mutual_pair_pass(const NeighbourGrid& cells, const KernelTable& ke
 #pragma omp for schedule(dynamic, 1)
       for (std::int64_t b = 0; b < static_cast<std::int64_t>(cells.write_blocks(colour)); ++b)
         cells.for_each_write_block_run(colour, static_cast<std::size_t>(b), [&](std::size_t begin, std::size_t end) {
-          for (std::size_t slot = begin; slot < end; ++slot) pairs += pairs_from(slot, lanes);
+          for (std::size_t slot = begin; slot < end; ++slot) pairs += pairs_from(slot, lanes, visc_max);
         });
     }
 #pragma omp for schedule(static)
     for (std::int64_t k = 0; k < static_cast<std::int64_t>(n); ++k) finish(static_cast<Index>(k));
   }
-  return pairs;
+  return {pairs, visc_max};
 }
 
 }  // namespace talus::sph
