@@ -315,7 +315,11 @@ void BlockParticles::initial_density(World& world) {
   if (fs.size() == 0) return;
   ParticleStore& s = world.boundary;
   const KernelTable& k = *settings_.kernel;
-  const NeighbourGrid& fluid_cells = *settings_.cells;
+  // Its own grid of the fluid: bind() has just removed the fluid inside the
+  // blocks and moved the fluid against them, so the stage's is out of date.
+  NeighbourGrid fluid_cells;
+  fluid_cells.configure(world.dim, settings_.lo, settings_.hi, k.support_radius(), world.periodic);
+  fluid_cells.build(fs.position());
   const Material& mat = world.materials[material_];
   auto rho = s.scalar("density");
   for (std::size_t blk = 0; blk < blocks_.size(); ++blk) {

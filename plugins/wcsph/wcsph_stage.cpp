@@ -199,8 +199,11 @@ void WcsphStage::setup(World& world) {
   world.pair_terms_run = true;
   world.refresh_material_index();
   update_pressure(world);
-  cells_.build(world.fluid.position());
-  for (sph::SphBoundary* wall : walls_) wall->bind(world, settings_);
+  // Rebuilt for each model: one may remove or move fluid particles as it binds (blocks).
+  for (sph::SphBoundary* wall : walls_) {
+    cells_.build(world.fluid.position());
+    wall->bind(world, settings_);
+  }
 
   if (integrator_ == Integrator::verlet) {
     std::ranges::copy(s.vector("velocity"), s.vector("velocity_prev").begin());

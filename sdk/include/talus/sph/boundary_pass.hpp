@@ -54,8 +54,9 @@ struct FluidSettings {
   // impose with a mirrored WallSet::viscous_velocity; when false (artificial
   // viscosity) a model gives its walls' own velocity, or a free-slip one.
   bool viscous_velocity = false;
-  // The fluid's neighbour grid, built on the positions bind() sees (for the
-  // walls' initial state; the stage rebuilds it every step, so not kept).
+  // The fluid's neighbour grid, built on the fluid as bind() receives it (for
+  // the walls' initial state; the stage rebuilds it every step, so not kept).
+  // A model whose bind() removes or moves fluid particles builds its own.
   const NeighbourGrid* cells = nullptr;
 };
 
