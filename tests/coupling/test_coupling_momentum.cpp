@@ -167,6 +167,52 @@ TEST(CouplingMomentum, BlockAcrossAPeriodicBoundaryFeelsTheSameForceAndTorque) {
   }
 }
 
+// The walls' initial state comes from the still water around them (pressure
+// extrapolation): each wall and block particle starts at the hydrostatic
+// pressure of its depth. The block is bound first here, and its bind removes
+// the water inside it and moves the water against it: the floor, bound next,
+// and the block itself must read the water as it is then, not as it was
+// filled (a grid of the filled water gives them other particles' pressures).
+TEST(CouplingMomentum, WallsAndBlockStartAtTheHydrostaticPressureOfTheWaterAroundThem) {
+  json scene = periodic_scene(0.18);
+  std::swap(scene["bodies"][1], scene["bodies"][2]);  // water, rock, floor: the block binds first
+  scene["time"]["max_steps"] = 1;
+  CoupledRun run(scene, "initial_wall_pressure");
+  const talus::World& w = run.world();
+  // The water's own pressure against depth, p = a + b z, by least squares.
+  const auto xf = w.fluid.position();
+  const auto pf = w.fluid.scalar("pressure");
+  double sz = 0, sp = 0, szz = 0, szp = 0;
+  const double n = static_cast<double>(xf.size());
+  for (std::size_t i = 0; i < xf.size(); ++i) {
+    sz += xf[i].z;
+    sp += pf[i];
+    szz += xf[i].z * xf[i].z;
+    szp += xf[i].z * pf[i];
+  }
+  const double b = (n * szp - sz * sp) / (n * szz - sz * sz), a = (sp - b * sz) / n;
+  EXPECT_NEAR(b, -1000.0 * 9.81, 0.01 * 1000.0 * 9.81);  // rho0 g
+  // Every wall or block particle with water in its support: within 1 % of the
+  // pressure at the bottom (the extrapolation is exact for a linear field; the
+  // water's density differs from rho0 by p/c^2, below 0.5 %).
+  const auto xb = w.boundary.position();
+  const auto pb = w.boundary.scalar("pressure");
+  const auto body = w.boundary.body();
+  const double tolerance = 0.01 * a;
+  int rock = 0, floor = 0, bad = 0;
+  for (std::size_t k = 0; k < xb.size(); ++k) {
+    if (!(pb[k] > 0.0)) continue;  // no water within reach (below the floor's first layer)
+    const bool is_rock = w.bodies[body[k]].name == "rock";
+    (is_rock ? rock : floor) += 1;
+    const double want = a + b * xb[k].z;
+    if (std::abs(pb[k] - want) > tolerance && ++bad <= 5)
+      ADD_FAILURE() << (is_rock ? "block" : "floor") << " particle at z = " << xb[k].z << ": p = " << pb[k]
+                    << " Pa, the water's " << want << " Pa";
+  }
+  EXPECT_GT(rock, 50);
+  EXPECT_GT(floor, 50);
+}
+
 namespace {
 
 std::vector<std::filesystem::path> checkpoints_in(const std::string& dir) {
