@@ -479,6 +479,17 @@ class NeighbourGrid {
     h.count = 0;
   }
 
+  // |dx|^2 as the vector scan forms it. Fused only where the target has FMA:
+  // elsewhere std::fma would be a library call per candidate (and there is no
+  // vector scan to agree with).
+  static double distance2(double dx, double dy, double dz) {
+#if defined(__FMA__)
+    return std::fma(dz, dz, std::fma(dy, dy, dx * dx));
+#else
+    return dx * dx + dy * dy + dz * dz;
+#endif
+  }
+
   // Tests the sorted points of cells [c0, c1) from slot `first` on without a
   // branch on the outcome; hands full chunks to f. With AVX-512, eight points
   // a test and their hits' slots compressed into place; the remainder one by
@@ -516,7 +527,7 @@ class NeighbourGrid {
 #endif
     for (; s < e; ++s) {
       const double dx = q.x - xs_[s], dy = q.y - ys_[s], dz = q.z - zs_[s];
-      const double r2 = std::fma(dz, dz, std::fma(dy, dy, dx * dx));
+      const double r2 = distance2(dx, dy, dz);
       hits.s[count] = s;
       if constexpr (Periodic) hits.image[count] = static_cast<std::uint8_t>(image);
       count += r2 < r2max ? 1 : 0;
