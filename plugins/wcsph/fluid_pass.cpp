@@ -58,8 +58,8 @@ sph::MutualPassResult run_force_pass(const PassContext& ctx, const Terms&... ter
 }
 
 template <class... Terms>
-sph::MutualPassResult with_density_terms(const PassContext& ctx, DensityMode density, Diffusion diffusion, double delta_h_c0,
-                                 const Terms&... terms) {
+sph::MutualPassResult with_density_terms(const PassContext& ctx, DensityMode density, Diffusion diffusion,
+                                         double delta_h_c0, const Terms&... terms) {
   const sph::Neighbours nb = ctx.nb;
   if (density == DensityMode::summation) return run_force_pass(ctx, terms...);
   const sph::Continuity cont{nb};

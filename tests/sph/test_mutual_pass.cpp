@@ -253,8 +253,8 @@ TEST_P(MutualPass, CountsEveryPairFromBothSidesAndRepeatsBitForBit) {
   const sph::ArtificialViscosity viscosity{cloud.nb(), 0.1 * kernel.h()};
   const sph::Continuity continuity{cloud.nb()};
   auto start = [&](Index i) { return start_of(cloud, i); };
-  const std::uint64_t gathered = sph::pair_pass(cloud.x.size(), std::span<const Vec3>(cloud.x), grid, kernel, sph::same_set, start,
-                            [](Index, const Sums&) {}, pressure);
+  const std::uint64_t gathered = sph::pair_pass(cloud.x.size(), std::span<const Vec3>(cloud.x), grid, kernel,
+                                                sph::same_set, start, [](Index, const Sums&) {}, pressure);
   std::uint64_t first = 0, second = 0;
   Rates a, b;
   {

@@ -176,9 +176,10 @@ class NeighbourGrid {
   // outer axes of the sorted order (z and y in 3D, y in 2D), into blocks at
   // least two cells (one search radius) wide, whole along x; runs of a block
   // are then whole rows of cells, which keeps the order of the scan close to
-  // the sorted order, and two threads seldom write to one cache line. A point's later neighbours lie in its own block or the blocks next
-  // to it, and along the outermost closed axis only in its own or the next
-  // one (later slots are not lower there). Blocks of one colour are three
+  // the sorted order, and two threads seldom write to one cache line. A
+  // point's later neighbours lie in its own block or the blocks next to it,
+  // and along the outermost closed axis only in its own or the next one
+  // (later slots are not lower there). Blocks of one colour are three
   // blocks apart (two along that axis) and share no neighbour: a colour's
   // blocks can run at once, and the colours run one after the other. Every
   // point then receives its shares in an order that the cells alone fix, so
@@ -260,9 +261,10 @@ class NeighbourGrid {
   }
 
   // The write blocks of level 0, half as many as cells along each divided
-  // axis (z and y in 3D, y in 2D). Along a periodic axis the first and last blocks are neighbours
-  // (either can write to the other): more than three blocks must come in a
-  // multiple of three, and the colours repeat every three blocks.
+  // axis (z and y in 3D, y in 2D). Along a periodic axis the first and last
+  // blocks are neighbours (either can write to the other): more than three
+  // blocks must come in a multiple of three, and the colours repeat every
+  // three blocks.
   void lay_out_write_blocks() {
     const Level& L = level_[0];
     const int outer = std::clamp(dim_, 1, 3) - 1;

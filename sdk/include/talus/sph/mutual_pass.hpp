@@ -205,7 +205,8 @@ MutualPassResult mutual_pair_pass(const NeighbourGrid& cells, const KernelTable&
       lanes.dz[k] = dx.z;
       lanes.r2[k] = r2;
       ++count;
-      if (++lanes.count == PairLanes::size) run_lanes<need_value, need_gradient>(lanes, kernel, eta2, sums, out, terms...);
+      if (++lanes.count == PairLanes::size)
+        run_lanes<need_value, need_gradient>(lanes, kernel, eta2, sums, out, terms...);
     });
     if (lanes.count > 0) run_lanes<need_value, need_gradient>(lanes, kernel, eta2, sums, out, terms...);
     out.add(i, sums.acc, sums.drho);
