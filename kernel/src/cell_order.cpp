@@ -1,7 +1,6 @@
 #include "cell_order.hpp"
 
 #include <array>
-#include <cstdint>
 
 #include "talus/neighbour_grid.hpp"
 
@@ -17,15 +16,14 @@ std::vector<Index> cell_order(std::span<const Vec3> x, const Vec3& lo, const Vec
   auto axis = [&](double v, int a) -> std::size_t {
     return a < dim ? static_cast<std::size_t>(floor_within((v - lo[a]) * inv[a], 0, n[a] - 1)) : 0;
   };
-  std::vector<std::uint32_t> key(x.size());
+  auto key = [&](const Vec3& p) { return (axis(p.z, 2) * n[1] + axis(p.y, 1)) * n[0] + axis(p.x, 0); };
+  // Each key is computed twice rather than stored: a re-sort is rare, and a
+  // key per point would add to the run's peak memory.
   std::vector<Index> start(static_cast<std::size_t>(n[0]) * n[1] * n[2] + 1, 0);
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    key[i] = static_cast<std::uint32_t>((axis(x[i].z, 2) * n[1] + axis(x[i].y, 1)) * n[0] + axis(x[i].x, 0));
-    ++start[key[i] + 1];
-  }
+  for (const Vec3& p : x) ++start[key(p) + 1];
   for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
   std::vector<Index> order(x.size());
-  for (std::size_t i = 0; i < x.size(); ++i) order[start[key[i]]++] = static_cast<Index>(i);
+  for (std::size_t i = 0; i < x.size(); ++i) order[start[key(x[i])]++] = static_cast<Index>(i);
   return order;
 }
 
