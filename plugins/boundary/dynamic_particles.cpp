@@ -4,6 +4,8 @@
 #include <cmath>
 #include <set>
 
+#include <omp.h>
+
 #include "talus/eos.hpp"
 #include "talus/error.hpp"
 #include "talus/geometry.hpp"
@@ -330,33 +332,37 @@ void DynamicParticles::hold_fluid(World& world, double time) {
   if (n == 0 || count_ == 0) return;
   const auto x = fluid.position();
   const auto wall_body = world.boundary.body();
-  near_slot_.resize(n);
   const double reach = crossing_reach_;
   const int* slot_of_body = slot_of_body_.data();
-  std::size_t near = 0;
-#pragma omp parallel for schedule(static) reduction(+ : near) if (n >= sph::parallel_min)
-  for (std::size_t i = 0; i < n; ++i) {
-    std::int32_t slot = -1;
-    for (std::size_t k = 0; k < ranges_.size(); ++k) {
-      const std::int32_t* body = wall_body.data() + ranges_[k].first;
-      cells_[k].for_each_neighbour(x[i], reach, [&](Index b, const Vec3&, double) { slot = slot_of_body[body[b]]; });
+  // Each thread lists what it finds in its static chunk of rows: read thread
+  // by thread, the lists are in row order.
+  const int threads = n >= sph::parallel_min ? omp_get_max_threads() : 1;
+  near_by_thread_.resize(std::max<std::size_t>(near_by_thread_.size(), threads));
+  for (auto& near : near_by_thread_) near.clear();  // the team may be smaller than asked
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<NearWall>& near = near_by_thread_[omp_get_thread_num()];
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      std::int32_t slot = -1;
+      for (std::size_t k = 0; k < ranges_.size(); ++k) {
+        const std::int32_t* body = wall_body.data() + ranges_[k].first;
+        cells_[k].for_each_neighbour(x[i], reach, [&](Index b, const Vec3&, double) { slot = slot_of_body[body[b]]; });
+      }
+      if (slot >= 0) near.push_back({static_cast<Index>(i), slot});
     }
-    near_slot_[i] = slot;
-    near += slot >= 0;
   }
-  if (near == 0) return;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::int32_t slot = near_slot_[i];
-    if (slot < 0) continue;
-    const PrescribedMotion& motion = motion_[slot];
-    const Vec3 x0 = motion.initial_position(x[i], time);
-    if (!region_[slot](x0)) continue;
-    const Vec3 surface = motion.position(surface_[slot](x0), time);
-    const Vec3 out = surface - x[i];  // out of the wall, into the fluid
-    const Vec3 normal = norm(out) > 0.0 ? out * (1.0 / norm(out)) : Vec3{};
-    crossings_.put_back(world, i, surface, normal, motion.velocity(surface_[slot](x0), time),
-                        static_cast<std::size_t>(slot), "wall '" + body_names_[slot] + "'", time);
-  }
+  for (const auto& near : near_by_thread_)
+    for (const auto [i, slot] : near) {
+      const PrescribedMotion& motion = motion_[slot];
+      const Vec3 x0 = motion.initial_position(x[i], time);
+      if (!region_[slot](x0)) continue;
+      const Vec3 surface = motion.position(surface_[slot](x0), time);
+      const Vec3 out = surface - x[i];  // out of the wall, into the fluid
+      const Vec3 normal = norm(out) > 0.0 ? out * (1.0 / norm(out)) : Vec3{};
+      crossings_.put_back(world, i, surface, normal, motion.velocity(surface_[slot](x0), time),
+                          static_cast<std::size_t>(slot), "wall '" + body_names_[slot] + "'", time);
+    }
 }
 
 void DynamicParticles::refresh_wall_sets(World& world) {

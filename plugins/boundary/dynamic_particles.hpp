@@ -116,7 +116,11 @@ class DynamicParticles final : public sph::SphBoundary {
   std::vector<std::function<bool(const Vec3&)>> region_;  // per body slot: inside the wall material (t = 0 frame)
   std::vector<std::function<Vec3(const Vec3&)>> surface_;  // per body slot: the nearest wall surface point (t = 0)
   sph::WallCrossings crossings_;                          // fluid found inside my walls (by body slot)
-  std::vector<std::int32_t> near_slot_;                   // per fluid particle: the slot of a wall within reach, or -1
+  struct NearWall {
+    Index fluid;        // a fluid row within reach of one of my wall particles
+    std::int32_t slot;  // that wall's body slot
+  };
+  std::vector<std::vector<NearWall>> near_by_thread_;  // hold_fluid's finds, per OpenMP thread, in row order
   double crossing_reach_ = 0.0;                           // the largest dp of my walls
   std::vector<int> slot_of_body_;              // world body index -> slot (-1: not mine)
   bool moves_ = false;
