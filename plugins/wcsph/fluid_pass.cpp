@@ -43,7 +43,7 @@ sph::MutualPassResult run_force_pass(const PassContext& ctx, const Terms&... ter
     s.p = f.p[i];
     s.c = f.c[i];
     s.mu = mu ? mu[f.mat[i]] : ctx.nb.viscosity[i];
-    s.kh = ctx.nb.rho_over_c2[i];
+    s.kh = s.rho / (s.c * s.c);
     s.mat = f.mat[i];
     return s;
   };
@@ -80,19 +80,14 @@ void WcsphStage::refresh_reciprocals(World& world) {
   FluidFields f(world.fluid);
   const std::size_t n = f.rho.size();
   inv_rho_.resize(n);
-  rho_over_c2_.resize(n);
 #pragma omp parallel for schedule(static) if (n >= 4096)
-  for (std::size_t i = 0; i < n; ++i) {
-    inv_rho_[i] = 1.0 / f.rho[i];
-    rho_over_c2_[i] = f.rho[i] / (f.c[i] * f.c[i]);
-  }
+  for (std::size_t i = 0; i < n; ++i) inv_rho_[i] = 1.0 / f.rho[i];
 }
 
 std::uint64_t WcsphStage::fluid_pass(World& world) {
   FluidFields f(world.fluid);
   sph::Neighbours nb = f.neighbours();
   nb.inv_density = inv_rho_.data();
-  nb.rho_over_c2 = rho_over_c2_.data();
   // The three-pass viscosity's force pass reads mu_eff of both particles; start() then takes mu_eff[i].
   if (per_particle_viscosity_) nb.viscosity = world.fluid.scalar("mu_eff").data();
   const PassContext ctx{world,          f, cells_, per_particle_viscosity_ ? nullptr : material_mu_.data(),

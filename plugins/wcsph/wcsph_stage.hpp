@@ -127,7 +127,7 @@ class WcsphStage final : public Stage {
   sph::FluidSettings settings_;
   NeighbourGrid cells_;
   Vec3 period_;  // domain length on periodic axes (lever arms of rigid-body wall sets)
-  std::vector<double> inv_rho_, rho_over_c2_;  // scratch, refilled every evaluation (grow only)
+  std::vector<double> inv_rho_;  // scratch, refilled every evaluation (grow only)
   double fluid_visc_max_ = 0.0;  // the fluid pass's largest |v_ij.x_ij|/(r^2+eta^2), 1/s (visc_rate holds the walls')
   std::vector<std::string> halo_fields_;       // scratch: the fields refresh_halos() sends
 

@@ -47,7 +47,7 @@ struct Cloud {
   double mu_of_material[2] = {1e-3, 5.0};
 
   sph::Neighbours nb() const {
-    return {v.data(), rho.data(), p.data(), c.data(), m.data(), mat.data(), inv_rho.data(), kh.data(), mu_eff.data()};
+    return {v.data(), rho.data(), p.data(), c.data(), m.data(), mat.data(), inv_rho.data(), mu_eff.data()};
   }
 };
 

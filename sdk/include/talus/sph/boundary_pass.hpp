@@ -75,7 +75,7 @@ struct FluidView {
   // The fluid as the neighbour set of a wall-side pass.
   Neighbours neighbours() const {
     return {velocity.data(), density.data(),     pressure.data(), sound_speed.data(), mass.data(),
-            material.data(), inv_density.data(), nullptr /* rho/c^2 */, viscosity.data()};
+            material.data(), inv_density.data(), viscosity.data()};
   }
 };
 

@@ -30,7 +30,6 @@ struct Neighbours {
   const double* mass = nullptr;
   const std::int32_t* material = nullptr;
   const double* inv_density = nullptr;  // 1/rho, refreshed with the density (saves divisions per pair)
-  const double* rho_over_c2 = nullptr;  // rho/c^2, for the Fourtakas diffusion only
   const double* viscosity = nullptr;    // mu_eff per particle, Pa s (non-Newtonian / turbulent passes only)
 };
 
@@ -321,7 +320,10 @@ struct DensityDiffusion {
     const double same_material = s.mat == nb.material[j] ? 1.0 : 0.0;
     double drho = (s.rho - nb.density[j]) * same_material;
     if constexpr (Hydrostatic) {
-      const double kbar = 0.5 * (s.kh + nb.rho_over_c2[j]);
+      // rho_j/c_j^2 from the two fields the pair loads anyway: a division
+      // costs no more than loading a third.
+      const double c_j = nb.sound_speed[j];
+      const double kbar = 0.5 * (s.kh + nb.density[j] / (c_j * c_j));
       drho -= kbar * dot(gravity, q.dx) * same_material;
     }
     return delta_h_c0 * 2.0 * drho * (q.r2 * q.dw_r) * q.inv_r2e;
