@@ -16,7 +16,6 @@ inline const FieldInfo field_mass{"mass", FieldType::scalar, "kg", true, true};
 inline const FieldInfo field_sound_speed{"sound_speed", FieldType::scalar, "m/s", false, false};
 inline const FieldInfo field_acceleration{"acceleration", FieldType::vector, "m/s^2", false, false};
 inline const FieldInfo field_density_rate{"density_rate", FieldType::scalar, "kg/m^3/s", false, false};
-inline const FieldInfo field_visc_rate{"visc_rate", FieldType::scalar, "1/s", false, false};
 // Three-pass non-Newtonian / turbulent viscosity (only registered when used).
 inline const FieldInfo field_shear_rate{"shear_rate", FieldType::scalar, "1/s", true, false};
 inline const FieldInfo field_mu_eff{"mu_eff", FieldType::scalar, "Pa s", true, false};
@@ -30,7 +29,7 @@ inline const FieldInfo field_density_prev{"density_prev", FieldType::scalar, "kg
 
 struct FluidFields {
   std::span<Vec3> x, v, a;
-  std::span<double> rho, p, c, m, drho, visc;
+  std::span<double> rho, p, c, m, drho;
   std::span<std::int32_t> mat;
 
   explicit FluidFields(ParticleStore& s)
@@ -42,7 +41,6 @@ struct FluidFields {
         c(s.scalar("sound_speed")),
         m(s.scalar("mass")),
         drho(s.scalar("density_rate")),
-        visc(s.scalar("visc_rate")),
         mat(s.material()) {}
 
   sph::Neighbours neighbours() const {

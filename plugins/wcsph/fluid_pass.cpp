@@ -47,11 +47,7 @@ sph::MutualPassResult run_force_pass(const PassContext& ctx, const Terms&... ter
     s.mat = f.mat[i];
     return s;
   };
-  // visc_rate starts at zero for the wall passes and pair terms, which add their pairs' bounds to it.
-  auto finish = [&](Index i) {
-    f.a[i] += g;
-    f.visc[i] = 0.0;
-  };
+  auto finish = [&](Index i) { f.a[i] += g; };
   const sph::FluidReactions out{f.a.data(), f.drho.data()};
   return sph::mutual_pair_pass(ctx.cells, ctx.world.kernel, out, ctx.world.fluid.owned_size(), start, finish,
                                terms...);
@@ -153,10 +149,11 @@ void WcsphStage::compute_rates(World& world) {
     apparent_viscosity_pass(world);
   }
   pairs_total_ += fluid_pass(world);
+  rates_visc_max_ = 0.0;
   pairs_total_ += wall_passes(world);
   if (!pair_terms_.empty()) {
     const sph::FluidView view = fluid_view(world);
-    const sph::FluidRates rates{f.a, f.drho, f.visc};
+    const sph::FluidRates rates{f.a, f.drho, &rates_visc_max_};
     for (sph::PairTerm* term : pair_terms_) pairs_total_ += term->add_rates({world, view, rates});
   }
   if (point_implicit_) scale_stiff_particles(world);

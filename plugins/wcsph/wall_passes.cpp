@@ -14,6 +14,8 @@
 // arm and for the bounding-box filter alike.
 #include <algorithm>
 
+#include <omp.h>
+
 #include "fluid_fields.hpp"
 #include "fluid_sums.hpp"
 #include "talus/periodic.hpp"
@@ -25,6 +27,8 @@
 namespace talus::wcsph {
 
 namespace {
+
+constexpr std::size_t thread_stride = 8;  // doubles per cache line: no two threads write to one line
 
 struct BodyReaction {
   Vec3 force, torque;
@@ -38,6 +42,7 @@ struct BodyReaction {
 struct WallPass {
   const sph::FluidView& fluid;
   const sph::FluidRates& rates;
+  double* visc_max_by_thread;  // a cache line per thread: the largest s.visc its particles had
   const sph::WallSet& set;
   const KernelTable& kernel;
   const double* material_mu;  // where the fluid has no mu_eff
@@ -62,7 +67,8 @@ struct WallPass {
   void add_rates(Index i, const FluidSums& s) const {
     rates.acceleration[i] += s.acc;
     if (continuity) rates.density_rate[i] += s.drho;
-    rates.visc_rate[i] = std::max(rates.visc_rate[i], s.visc);
+    double& visc_max = visc_max_by_thread[thread_stride * omp_get_thread_num()];
+    visc_max = std::max(visc_max, s.visc);
   }
 
   template <class... Terms>
@@ -109,7 +115,8 @@ sph::FluidView WcsphStage::fluid_view(World& world) const {
 std::uint64_t WcsphStage::wall_passes(World& world) {
   FluidFields f(world.fluid);
   const sph::FluidView fluid = fluid_view(world);
-  const sph::FluidRates rates{f.a, f.drho, f.visc};
+  const sph::FluidRates rates{f.a, f.drho, &rates_visc_max_};
+  visc_max_by_thread_.assign(thread_stride * omp_get_max_threads(), 0.0);
   const ViscositySettings viscosity = viscosity_settings(world);
   const bool continuity = density_ == DensityMode::continuity;
   std::uint64_t pairs = 0;
@@ -118,8 +125,8 @@ std::uint64_t WcsphStage::wall_passes(World& world) {
     const std::span<const sph::WallSet> sets = wall->wall_sets();
     for (std::size_t k = 0; k < sets.size(); ++k) {
       const sph::WallSet& set = sets[k];
-      const WallPass pass{fluid, rates, set, world.kernel, material_mu_.data(), continuity, period_,
-                          world.fluid.owned_size()};
+      const WallPass pass{fluid,      rates,   visc_max_by_thread_.data(), set, world.kernel, material_mu_.data(),
+                          continuity, period_, world.fluid.owned_size()};
       sph::Neighbours viscous_nb = set.fields;
       viscous_nb.velocity = set.viscous_velocity;
       const sph::PressureForce pressure{set.fields};
@@ -134,6 +141,8 @@ std::uint64_t WcsphStage::wall_passes(World& world) {
     }
     pairs += wall->add_direct_forces(world, fluid, rates);
   }
+  for (std::size_t t = 0; t < visc_max_by_thread_.size(); t += thread_stride)
+    rates_visc_max_ = std::max(rates_visc_max_, visc_max_by_thread_[t]);
   return pairs;
 }
 

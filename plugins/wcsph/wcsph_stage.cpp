@@ -103,7 +103,7 @@ void WcsphStage::setup(World& world) {
 
   ParticleStore& s = world.fluid;
   for (const FieldInfo* info : {&field_velocity, &field_density, &field_pressure, &field_mass, &field_sound_speed,
-                                &field_acceleration, &field_density_rate, &field_visc_rate})
+                                &field_acceleration, &field_density_rate})
     s.require(*info);
   if (integrator_ == Integrator::symplectic || integrator_ == Integrator::predictor_corrector)
     for (const FieldInfo* info : {&field_position_n, &field_velocity_n, &field_density_n}) s.require(*info);
@@ -238,13 +238,11 @@ double WcsphStage::stable_time_step(World& world) {
   const std::size_t owned = world.fluid.owned_size();
   const auto a = world.fluid.vector("acceleration");
   const auto c = world.fluid.scalar("sound_speed");
-  const auto visc = world.fluid.scalar("visc_rate");
-  double a_max = 0.0, c_max = 0.0, visc_max = fluid_visc_max_;
-#pragma omp parallel for schedule(static) reduction(max : a_max, c_max, visc_max) if (owned >= 4096)
+  double a_max = 0.0, c_max = 0.0, visc_max = std::max(fluid_visc_max_, rates_visc_max_);
+#pragma omp parallel for schedule(static) reduction(max : a_max, c_max) if (owned >= 4096)
   for (std::size_t i = 0; i < owned; ++i) {
     a_max = std::max(a_max, norm2(a[i]));
     c_max = std::max(c_max, c[i]);
-    visc_max = std::max(visc_max, visc[i]);
   }
   const Parallel& ranks = world.parallel();
   a_max = std::sqrt(ranks.max(a_max));

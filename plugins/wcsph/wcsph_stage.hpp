@@ -128,7 +128,10 @@ class WcsphStage final : public Stage {
   NeighbourGrid cells_;
   Vec3 period_;  // domain length on periodic axes (lever arms of rigid-body wall sets)
   std::vector<double> inv_rho_;  // scratch, refilled every evaluation (grow only)
-  double fluid_visc_max_ = 0.0;  // the fluid pass's largest |v_ij.x_ij|/(r^2+eta^2), 1/s (visc_rate holds the walls')
+  // The largest |v_ij.x_ij|/(r^2+eta^2), 1/s, of the fluid pass and of the
+  // wall passes and pair terms (FluidRates::visc_max).
+  double fluid_visc_max_ = 0.0, rates_visc_max_ = 0.0;
+  std::vector<double> visc_max_by_thread_;  // the wall passes' maxima, a cache line per thread
   std::vector<std::string> halo_fields_;       // scratch: the fields refresh_halos() sends
 
   // Step state.

@@ -83,7 +83,10 @@ struct FluidView {
 struct FluidRates {
   std::span<Vec3> acceleration;     // m/s^2
   std::span<double> density_rate;   // kg/m^3/s (continuity; unused with summation density)
-  std::span<double> visc_rate;      // 1/s, max |v_ij.x_ij|/(r^2+eta^2) for the time-step bound
+  // The largest |v_ij.x_ij|/(r^2+eta^2) of any pair, 1/s, for the time-step
+  // bound: one value for the whole fluid, raised, never lowered (a pass on
+  // several threads takes its own maximum first).
+  double* visc_max = nullptr;
 };
 
 // A rigid body a wall set belongs to: the fluid's reaction on it is summed
