@@ -29,17 +29,21 @@ using sph::wall_density_rate;
 using sph::wall_density_n;
 using sph::wall_viscous_velocity;
 
+// Where the particles of a moving wall started: its motion maps them from
+// there. Only models with a moving wall keep it; still walls never leave it.
 const FieldInfo wall_position0{"position0", FieldType::vector, "m", false, true};
+std::span<Vec3> start_positions(ParticleStore& s, std::size_t first, std::size_t count) {
+  return s.vector("position0").subspan(first, count);
+}
 
 // The wall store's fields over this model's particles [first, first + count).
 struct WallFields {
-  std::span<Vec3> x, v, x0;
+  std::span<Vec3> x, v;
   std::span<double> rho, p, c, m, drho, rho_n;
   std::span<std::int32_t> mat, body;
   WallFields(ParticleStore& s, std::size_t first, std::size_t count)
       : x(s.position().subspan(first, count)),
         v(s.vector("velocity").subspan(first, count)),
-        x0(s.vector("position0").subspan(first, count)),
         rho(s.scalar("density").subspan(first, count)),
         p(s.scalar("pressure").subspan(first, count)),
         c(s.scalar("sound_speed").subspan(first, count)),
@@ -122,7 +126,7 @@ DynamicParticles::DynamicParticles(const ParamValues& v)
 void DynamicParticles::setup(World& world, std::span<const int> bodies) {
   ParticleStore& s = world.boundary;
   for (const FieldInfo* f : {&wall_velocity, &wall_density, &wall_pressure, &wall_mass, &wall_sound_speed,
-                             &wall_position0, &wall_density_rate, &wall_density_n})
+                             &wall_density_rate, &wall_density_n})
     s.require(*f);
   if (count_ > 0 && first_ + count_ != s.size())
     throw RunError("dynamic_particles: setup called again after other wall particles were added");
@@ -154,7 +158,6 @@ void DynamicParticles::setup(World& world, std::span<const int> bodies) {
         !adjusted.empty())
       world.warnings.add("wall '" + body.name + "' (" + v.pointer("shape") + "): " + adjusted);
     auto x = s.position();
-    auto x0 = s.vector("position0");
     auto rho = s.scalar("density");
     auto m = s.scalar("mass");
     auto mat = s.material();
@@ -163,7 +166,7 @@ void DynamicParticles::setup(World& world, std::span<const int> bodies) {
                                       world.hi);
     for (std::size_t k = 0; k < points.size(); ++k) {
       const std::size_t i = first + k;
-      x[i] = x0[i] = points[k];
+      x[i] = points[k];
       rho[i] = rho0;
       m[i] = mass;
       mat[i] = material;
@@ -183,6 +186,11 @@ void DynamicParticles::setup(World& world, std::span<const int> bodies) {
   }
   count_ = s.size() - first_;
   ranges_ = {RowRange{first_, count_, 0}};
+  if (moves_) {
+    s.require(wall_position0);
+    const auto x = s.position().subspan(first_, count_);
+    std::ranges::copy(x, start_positions(s, first_, count_).begin());
+  }
 }
 
 void DynamicParticles::bind(World& world, const sph::FluidSettings& settings) {
@@ -194,8 +202,10 @@ void DynamicParticles::bind(World& world, const sph::FluidSettings& settings) {
   rho0_of_material_.assign(world.materials.size(), 0.0);
   for (std::size_t m = 0; m < world.materials.size(); ++m) rho0_of_material_[m] = world.materials[m].density;
   // Moving walls start with their prescribed velocity (an impulsively started lid moves from the first step).
-  if (moves_)
-    for (std::size_t k = 0; k < count_; ++k) w.v[k] = motion_[slot_of_body_[w.body[k]]].velocity(w.x0[k], world.time);
+  if (moves_) {
+    const auto x0 = start_positions(world.boundary, first_, count_);
+    for (std::size_t k = 0; k < count_; ++k) w.v[k] = motion_[slot_of_body_[w.body[k]]].velocity(x0[k], world.time);
+  }
   lay_out(world);
   initial_density(world);
   update_pressure(world);
@@ -383,8 +393,9 @@ void DynamicParticles::find_ghosts(World& world) {
   ghost0_.resize(count_);
   for (const RowRange& r : ranges_) {
     WallFields w(world.boundary, r.first, r.count);
+    const std::span<const Vec3> x0 = moves_ ? start_positions(world.boundary, r.first, r.count) : w.x;
     for (std::size_t b = 0; b < r.count; ++b) {
-      const Vec3& p = w.x0[b];
+      const Vec3& p = x0[b];
       ghost0_[r.offset + b] = surface_[slot_of_body_[w.body[b]]](p) * 2.0 - p;
       ghost_reach_ = std::max(ghost_reach_, norm(ghost0_[r.offset + b] - p));
     }
@@ -494,12 +505,13 @@ void DynamicParticles::advance_walls(World& world, double time, double dt) {
       }
     }
     if (moves_) {
+      const auto x0 = start_positions(world.boundary, r.first, r.count);
 #pragma omp parallel for schedule(static) if (r.count >= 4096)
       for (std::size_t b = 0; b < r.count; ++b) {
         const PrescribedMotion& motion = motion_[slot_of_body_[w.body[b]]];
         // A wall moving along a periodic axis (the lid of a Couette cell) stays in the period.
-        w.x[b] = wrap_periodic(world, motion.position(w.x0[b], time));
-        w.v[b] = motion.velocity(w.x0[b], time);
+        w.x[b] = wrap_periodic(world, motion.position(x0[b], time));
+        w.v[b] = motion.velocity(x0[b], time);
       }
     }
   }
