@@ -106,10 +106,10 @@ class NeighbourGrid {
     const std::size_t n = pos.size();
     std::fill(level_max_.begin(), level_max_.end(), 0.0);
     if (n > 0) level_max_[0] = radius_;
-    key_.resize(n);
+    reserve_keys(n);
     const Level& L = level_[0];
 #pragma omp parallel for schedule(static) if (n > 4096)
-    for (std::size_t i = 0; i < n; ++i) key_[i] = static_cast<Index>(L.cell_index(pos[i], lo_, dim_));
+    for (std::size_t i = 0; i < n; ++i) set_key(i, static_cast<Index>(L.cell_index(pos[i], lo_, dim_)));
     sort_into_cells(pos);
   }
 
@@ -119,9 +119,9 @@ class NeighbourGrid {
     const std::size_t n = rows.size();
     std::fill(level_max_.begin(), level_max_.end(), 0.0);
     if (n > 0) level_max_[0] = radius_;
-    key_.resize(n);
+    reserve_keys(n);
     const Level& L = level_[0];
-    for (std::size_t q = 0; q < n; ++q) key_[q] = static_cast<Index>(L.cell_index(pos[rows[q]], lo_, dim_));
+    for (std::size_t q = 0; q < n; ++q) set_key(q, static_cast<Index>(L.cell_index(pos[rows[q]], lo_, dim_)));
     sort_into_cells(n, [&](std::size_t q) { return rows[q]; }, pos);
   }
 
@@ -132,11 +132,11 @@ class NeighbourGrid {
     for (std::size_t i = 0; i < n; ++i) top = std::max(top, level_of(radius[i]));
     if (top >= static_cast<int>(level_.size())) lay_out_levels(top + 1);
     std::fill(level_max_.begin(), level_max_.end(), 0.0);
-    key_.resize(n);
+    reserve_keys(n);
     for (std::size_t i = 0; i < n; ++i) {
       const int k = level_of(radius[i]);
       level_max_[k] = std::max(level_max_[k], radius[i]);
-      key_[i] = static_cast<Index>(level_[k].offset + level_[k].cell_index(pos[i], lo_, dim_));
+      set_key(i, static_cast<Index>(level_[k].offset + level_[k].cell_index(pos[i], lo_, dim_)));
     }
     sort_into_cells(pos);
   }
@@ -345,7 +345,19 @@ class NeighbourGrid {
     return false;
   }
 
-  // Counting sort of key_ into order_, with the coordinates copied alongside.
+  // The points' cell keys live in zs_'s bytes until the sort has read them
+  // (an array of their own would cost 4 bytes a point for the grid's life).
+  void reserve_keys(std::size_t n) { zs_.resize(n); }
+  void set_key(std::size_t i, Index key) {
+    std::memcpy(reinterpret_cast<char*>(zs_.data()) + i * sizeof key, &key, sizeof key);
+  }
+  Index key(std::size_t i) const {
+    Index k;
+    std::memcpy(&k, reinterpret_cast<const char*>(zs_.data()) + i * sizeof k, sizeof k);
+    return k;
+  }
+
+  // Counting sort of the keys into order_, with the coordinates copied alongside.
   void sort_into_cells(std::span<const Vec3> pos) {
     sort_into_cells(pos.size(), [](std::size_t i) { return static_cast<Index>(i); }, pos);
   }
@@ -355,20 +367,22 @@ class NeighbourGrid {
     order_.resize(n);
     xs_.resize(n);
     ys_.resize(n);
-    zs_.resize(n);
     std::fill(cell_start_.begin(), cell_start_.end(), 0);
-    for (std::size_t i = 0; i < n; ++i) ++cell_start_[key_[i] + 1];
+    for (std::size_t i = 0; i < n; ++i) ++cell_start_[key(i) + 1];
     for (std::size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
     // Each cell's start is its cursor while filling: it ends as the next cell's start, and the
     // starts are shifted back by one afterwards (no second array of cells).
     for (std::size_t i = 0; i < n; ++i) {
-      const Index s = cell_start_[key_[i]]++;
+      const Index s = cell_start_[key(i)]++;
       const Index j = point(i);
       order_[s] = j;
       xs_[s] = pos[j].x;
       ys_[s] = pos[j].y;
-      zs_[s] = dim_ == 3 ? pos[j].z : 0.0;
     }
+    // z last, over the keys' bytes, once the last key has been read.
+    const bool planar = dim_ != 3;
+#pragma omp parallel for schedule(static) if (n > 4096)
+    for (std::size_t s = 0; s < n; ++s) zs_[s] = planar ? 0.0 : pos[order_[s]].z;
     std::copy_backward(cell_start_.begin(), cell_start_.end() - 2, cell_start_.end() - 1);
     cell_start_[0] = 0;
     if (!any_periodic_) mark_filled_blocks();
@@ -550,9 +564,9 @@ class NeighbourGrid {
   bool any_periodic_ = false;
   std::vector<Level> level_;
   std::vector<double> level_max_;  // largest search radius binned per level; 0: empty
-  std::vector<Index> cell_start_, key_, order_;
+  std::vector<Index> cell_start_, order_;
   std::vector<std::uint8_t> block_filled_;  // per block of cells: 1 if it holds a point
-  std::vector<double> xs_, ys_, zs_;
+  std::vector<double> xs_, ys_, zs_;  // the points' coordinates in order_ (zs_: their keys while sorting)
   std::array<int, 2> write_axis_{2, 1};          // the axes the write blocks divide, outermost first
   std::array<int, 2> write_blocks_along_{1, 1};  // blocks along each
   std::array<int, 2> write_step_{2, 3};          // blocks between two of one colour along each
