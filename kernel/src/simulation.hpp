@@ -128,7 +128,7 @@ class TALUS_API Simulation {
   std::uint64_t resort_every_ = 25;
   double last_output_time_ = -1.0;
   std::string output_directory_;
-  std::vector<std::uint8_t> escaped_;  // scratch, reused
+  std::vector<std::uint8_t> escaped_;  // per owned particle: 1 if it left the domain; empty when none did
   std::vector<std::uint8_t> removal_warned_;  // per body: its first removal was reported
   std::size_t warnings_printed_ = 0;
   std::size_t warnings_shared_ = 0;  // this rank's log up to here went to rank 0

@@ -23,7 +23,11 @@ std::size_t Simulation::flag_escaped_particles() {
   ParticleStore& fluid = world_.fluid;
   const std::size_t n = fluid.owned_size();
   auto x = fluid.position();
-  escaped_.assign(n, 0);
+  auto outside = [&](std::size_t i) {
+    for (int a = 0; a < world_.dim; ++a)
+      if (!world_.periodic[a] && (x[i][a] < world_.lo[a] || x[i][a] > world_.hi[a])) return true;
+    return false;
+  };
   std::size_t count = 0;
 #pragma omp parallel for reduction(+ : count) schedule(static) if (n > 4096)
   for (std::size_t i = 0; i < n; ++i) {
@@ -32,11 +36,15 @@ std::size_t Simulation::flag_escaped_particles() {
       if (world_.periodic[a]) {
         if (x[i][a] < world_.lo[a]) x[i][a] += L;
         if (x[i][a] >= world_.hi[a]) x[i][a] -= L;
-      } else if (x[i][a] < world_.lo[a] || x[i][a] > world_.hi[a]) {
-        escaped_[i] = 1;
       }
     }
-    count += escaped_[i];
+    count += outside(i);
+  }
+  // Flags only in the rare step in which a particle left: no byte per particle otherwise.
+  escaped_.clear();
+  if (count > 0) {
+    escaped_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) escaped_[i] = outside(i);
   }
   return count;
 }
@@ -44,7 +52,7 @@ std::size_t Simulation::flag_escaped_particles() {
 void Simulation::remove_flagged_particles() {
   ParticleStore& fluid = world_.fluid;
   const std::size_t n = escaped_.size();
-  if (std::find(escaped_.begin(), escaped_.end(), 1) == escaped_.end()) return;
+  if (n == 0) return;  // none left the domain
   const auto x = fluid.position();
   // The first particle of each body to leave, with where and when.
   removal_warned_.resize(world_.bodies.size(), 0);
@@ -59,6 +67,7 @@ void Simulation::remove_flagged_particles() {
                         " and was removed (an open face, or a leak through a wall); the summary counts all removals");
   }
   world_.removed += fluid.remove_if(escaped_);
+  escaped_ = {};
   world_.refresh_material_index();
 }
 
@@ -66,6 +75,7 @@ void Simulation::resort_particles() {
   if (world_.fluid.size() == 0) return;
   const double cell = world_.h > 0 ? world_.kernel.support_radius() : 2.0 * world_.dp;
   if (!(cell > 0)) return;
+  world_.release_material_index();
   world_.fluid.reorder(cell_order(world_.fluid.position(), world_.lo, world_.hi, cell, world_.dim));
   world_.refresh_material_index();
 }

@@ -93,6 +93,9 @@ class TALUS_API World {
   // re-sorted or particles are removed (the host refreshes them then).
   std::span<const Index> material_particles(int m) const { return material_index_[m]; }
   void refresh_material_index();
+  // Frees the index until the next refresh: a re-sort, which is followed by
+  // one, needs the memory more (it would otherwise add to the run's peak).
+  void release_material_index() { material_index_.clear(); }
 
   int find_material(std::string_view name) const;
   int find_body(std::string_view name) const;
