@@ -1,7 +1,7 @@
 // The order that sorts points by the grid cell they fall in (z, then y, then
 // x), for re-sorting the particle store so that neighbours lie near each other
-// in memory. Its scratch is one count per cell, freed on return: a re-sort
-// costs no memory between re-sorts.
+// in memory. Its scratch is a count per row of cells and per column, freed on
+// return: a re-sort costs no memory between re-sorts.
 #pragma once
 
 #include <span>

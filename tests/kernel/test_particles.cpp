@@ -1,5 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+#include <vector>
+
 #include "cell_order.hpp"
 #include "store_rows.hpp"
 #include "talus/particles.hpp"
@@ -27,6 +33,23 @@ TEST(CellOrder, SortsByCellAndBoundsTheGrid) {
   const std::vector<Vec3> far{{0, 0, 0}, {1e7, 1e7, 1e7}, {5e6, 0, 0}};
   const std::vector<Index> sparse = cell_order(far, {0, 0, 0}, {1e7, 1e7, 1e7}, 0.01, 3);  // 1e27 cells asked
   EXPECT_EQ(sparse, (std::vector<Index>{0, 2, 1}));
+}
+
+// The two counting sorts (by row of cells, then by column) give the order of one stable sort by
+// cell, on points spread over many rows, some of them empty, and outside the box.
+TEST(CellOrder, EqualsAStableSortByCell) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-0.1, 1.1);
+  std::vector<Vec3> x(5000);
+  for (Vec3& p : x) p = {u(rng), u(rng), 0.5 * u(rng)};  // the upper half of the box is empty
+  const Vec3 lo{0, 0, 0}, hi{1, 1, 1};
+  const double cell = 0.07;  // 14 cells along each axis
+  auto axis = [](double v) { return std::clamp(static_cast<int>(std::floor(v * 14)), 0, 13); };
+  auto key = [&](Index i) { return (axis(x[i].z) * 14 + axis(x[i].y)) * 14 + axis(x[i].x); };
+  std::vector<Index> expected(x.size());
+  std::iota(expected.begin(), expected.end(), Index{0});
+  std::stable_sort(expected.begin(), expected.end(), [&](Index a, Index b) { return key(a) < key(b); });
+  EXPECT_EQ(cell_order(x, lo, hi, cell, 3), expected);
 }
 
 // Reordering works cycle by cycle in place: many cycles of every length, fixed points included,
