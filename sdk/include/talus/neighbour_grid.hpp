@@ -347,6 +347,7 @@ class NeighbourGrid {
 
   // The points' cell keys live in zs_'s bytes until the sort has read them
   // (an array of their own would cost 4 bytes a point for the grid's life).
+  static_assert(sizeof(Index) <= sizeof(double), "a key must fit in a coordinate's bytes");
   void reserve_keys(std::size_t n) { zs_.resize(n); }
   void set_key(std::size_t i, Index key) {
     std::memcpy(reinterpret_cast<char*>(zs_.data()) + i * sizeof key, &key, sizeof key);
