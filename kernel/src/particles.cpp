@@ -8,15 +8,34 @@
 
 namespace talus {
 
-namespace {
-const char* type_name(FieldType t) {
+const char* field_type_name(FieldType t) {
   switch (t) {
     case FieldType::scalar: return "scalar";
     case FieldType::vector: return "vector";
     case FieldType::integer: return "integer";
     case FieldType::id: return "id";
+    case FieldType::scalar_f32: return "scalar_f32";
+    case FieldType::vector_f32: return "vector_f32";
   }
   return "?";
+}
+
+namespace {
+// The type a field is stored in: its own, or the float form under mixed precision.
+FieldType stored_type(const FieldInfo& info, bool mixed) {
+  if (!mixed || !info.single_when_mixed) return info.type;
+  switch (info.type) {
+    case FieldType::scalar: return FieldType::scalar_f32;
+    case FieldType::vector: return FieldType::vector_f32;
+    case FieldType::scalar_f32:
+    case FieldType::vector_f32: return info.type;
+    default: throw std::logic_error("field '" + info.name + "': only a scalar or vector field can be kept in float");
+  }
+}
+
+// The double-precision type a field of this type has outside mixed precision.
+FieldType double_type(FieldType type) {
+  return type == FieldType::scalar_f32 ? FieldType::scalar : type == FieldType::vector_f32 ? FieldType::vector : type;
 }
 }  // namespace
 
@@ -27,22 +46,48 @@ ParticleStore::ParticleStore() {
   require({"position", FieldType::vector, "m", true, true});
 }
 
+void ParticleStore::widen(Field& f) {
+  if (auto* column = std::get_if<std::vector<float>>(&f.data)) {
+    f.data = std::vector<double>(column->begin(), column->end());
+    f.info.type = FieldType::scalar;
+  } else if (auto* column = std::get_if<std::vector<Vec3f>>(&f.data)) {
+    f.data = std::vector<Vec3>(column->begin(), column->end());
+    f.info.type = FieldType::vector;
+  }
+}
+
+void ParticleStore::set_mixed_precision(bool mixed) {
+  if (mixed == mixed_) return;
+  for (const auto& f : fields_)
+    if (f.info.single_when_mixed)
+      throw std::logic_error("ParticleStore::set_mixed_precision: field '" + f.info.name + "' is already registered");
+  mixed_ = mixed;
+}
+
 void ParticleStore::require(const FieldInfo& info) {
+  const FieldType type = stored_type(info, mixed_);
   for (auto& f : fields_)
     if (f.info.name == info.name) {
-      if (f.info.type != info.type)
-        throw std::logic_error("field '" + info.name + "' requested as " + type_name(info.type) + " but registered as " +
-                               type_name(f.info.type));
+      if (double_type(f.info.type) != double_type(info.type))
+        throw std::logic_error("field '" + info.name + "' requested as " + field_type_name(info.type) +
+                               " but registered as " + field_type_name(f.info.type));
+      // A field stays in float only while every code that requires it allows
+      // that: one that reads it in double widens it (exactly, values kept).
+      if (f.info.type != type) widen(f);
+      f.info.single_when_mixed = f.info.single_when_mixed && info.single_when_mixed;
       f.info.output = f.info.output || info.output;
       f.info.restart = f.info.restart || info.restart;
       return;
     }
   Field f{info, {}};
-  switch (info.type) {
+  f.info.type = type;
+  switch (type) {
     case FieldType::scalar: f.data = std::vector<double>(size_, 0.0); break;
     case FieldType::vector: f.data = std::vector<Vec3>(size_); break;
     case FieldType::integer: f.data = std::vector<std::int32_t>(size_, 0); break;
     case FieldType::id: f.data = std::vector<std::uint64_t>(size_, 0); break;
+    case FieldType::scalar_f32: f.data = std::vector<float>(size_, 0.0f); break;
+    case FieldType::vector_f32: f.data = std::vector<Vec3f>(size_); break;
   }
   fields_.push_back(std::move(f));
 }
@@ -72,8 +117,8 @@ const ParticleStore::Field& ParticleStore::field(std::string_view name, FieldTyp
   for (const auto& f : fields_)
     if (f.info.name == name) {
       if (f.info.type != type)
-        throw std::logic_error("field '" + std::string(name) + "' is " + type_name(f.info.type) + ", accessed as " +
-                               type_name(type));
+        throw std::logic_error("field '" + std::string(name) + "' is " + field_type_name(f.info.type) +
+                               ", accessed as " + field_type_name(type));
       return f;
     }
   throw std::logic_error("no particle field '" + std::string(name) + "' (a stage must require() it at setup)");
@@ -95,6 +140,25 @@ std::span<const std::int32_t> ParticleStore::integer(std::string_view n) const {
 }
 std::span<std::uint64_t> ParticleStore::ids() { return std::get<3>(field("id", FieldType::id).data); }
 std::span<const std::uint64_t> ParticleStore::ids() const { return std::get<3>(field("id", FieldType::id).data); }
+std::span<float> ParticleStore::scalar_f32(std::string_view n) {
+  return std::get<4>(field(n, FieldType::scalar_f32).data);
+}
+std::span<const float> ParticleStore::scalar_f32(std::string_view n) const {
+  return std::get<4>(field(n, FieldType::scalar_f32).data);
+}
+std::span<Vec3f> ParticleStore::vector_f32(std::string_view n) {
+  return std::get<5>(field(n, FieldType::vector_f32).data);
+}
+std::span<const Vec3f> ParticleStore::vector_f32(std::string_view n) const {
+  return std::get<5>(field(n, FieldType::vector_f32).data);
+}
+
+const void* ParticleStore::column_data(std::string_view name, FieldType type) const {
+  return std::visit([](const auto& column) -> const void* { return column.data(); }, field(name, type).data);
+}
+void* ParticleStore::column_data(std::string_view name, FieldType type) {
+  return const_cast<void*>(std::as_const(*this).column_data(name, type));
+}
 
 std::size_t ParticleStore::element_bytes(FieldType type) {
   switch (type) {
@@ -102,6 +166,8 @@ std::size_t ParticleStore::element_bytes(FieldType type) {
     case FieldType::vector: return sizeof(Vec3);
     case FieldType::integer: return sizeof(std::int32_t);
     case FieldType::id: return sizeof(std::uint64_t);
+    case FieldType::scalar_f32: return sizeof(float);
+    case FieldType::vector_f32: return sizeof(Vec3f);
   }
   return 0;
 }

@@ -24,6 +24,72 @@ TEST(ParticleStore, FieldsAreAllocatedOnlyWhenRequested) {
   EXPECT_THROW(s.scalar("strain_rate"), std::logic_error);
 }
 
+// Mixed precision: a field whose metadata allows it is stored in float, moves with the
+// particles like any other, and is widened to double, exactly, as soon as code that reads it in
+// double requires it; a field that does not allow it, and the position, stay in double.
+TEST(ParticleStore, MixedPrecisionKeepsAllowedFieldsInFloat) {
+  ParticleStore s;
+  s.set_mixed_precision(true);
+  FieldInfo rho{"density", FieldType::scalar, "kg/m^3", true, true};
+  rho.single_when_mixed = true;
+  FieldInfo v{"velocity", FieldType::vector, "m/s", true, true};
+  v.single_when_mixed = true;
+  s.require(rho);
+  s.require(v);
+  s.require({"pressure", FieldType::scalar, "Pa", true, false});
+  s.append(3);
+  EXPECT_EQ(s.info("density").type, FieldType::scalar_f32);
+  EXPECT_EQ(s.info("velocity").type, FieldType::vector_f32);
+  EXPECT_EQ(s.info("pressure").type, FieldType::scalar);
+  EXPECT_EQ(s.info("position").type, FieldType::vector);
+  EXPECT_EQ(ParticleStore::element_bytes(FieldType::scalar_f32), 4u);
+  EXPECT_EQ(ParticleStore::element_bytes(FieldType::vector_f32), 12u);
+  EXPECT_EQ(s.bytes("velocity").size(), 36u);
+  EXPECT_THROW(s.scalar("density"), std::logic_error);  // not readable as double
+  EXPECT_THROW(s.vector("velocity"), std::logic_error);
+  EXPECT_THROW(s.set_mixed_precision(false), std::logic_error);  // too late: a float field exists
+
+  // Stored in float: rounded once, to the nearest float.
+  const double value = 1000.0 + 1.0 / 3.0;
+  s.column<float>("density")[1] = static_cast<float>(value);
+  s.column<Vec3f>("velocity")[2] = Vec3{0.1, -0.2, 0.3};
+  EXPECT_EQ(s.scalar_f32("density")[1], static_cast<float>(value));
+  EXPECT_NE(static_cast<double>(s.scalar_f32("density")[1]), value);
+  EXPECT_EQ(Vec3(s.vector_f32("velocity")[2]).y, static_cast<double>(-0.2f));
+  double seen = 0.0;
+  s.visit_scalar("density", [&](auto c) { seen = c[1]; });
+  EXPECT_EQ(seen, static_cast<double>(static_cast<float>(value)));
+
+  // Reordered and removed with the other fields.
+  const std::vector<Index> order{2, 1, 0};
+  s.reorder(order);
+  EXPECT_EQ(Vec3(s.vector_f32("velocity")[0]).z, static_cast<double>(0.3f));
+  s.remove_if(std::vector<std::uint8_t>{1, 0, 0});
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_EQ(s.scalar_f32("density")[0], static_cast<float>(value));
+
+  // A second registration that allows float keeps it; one that does not widens the field.
+  s.require(rho);
+  EXPECT_EQ(s.info("density").type, FieldType::scalar_f32);
+  s.require({"density", FieldType::scalar, "kg/m^3", true, true});
+  EXPECT_EQ(s.info("density").type, FieldType::scalar);
+  EXPECT_FALSE(s.info("density").single_when_mixed);
+  EXPECT_EQ(s.scalar("density")[0], static_cast<double>(static_cast<float>(value)));
+  s.require(rho);  // widened for good
+  EXPECT_EQ(s.info("density").type, FieldType::scalar);
+  EXPECT_THROW(s.require({"velocity", FieldType::scalar, "", true, true}), std::logic_error);
+
+  // Without mixed precision the same metadata gives double.
+  ParticleStore d;
+  d.require(rho);
+  EXPECT_EQ(d.info("density").type, FieldType::scalar);
+  FieldInfo count{"count", FieldType::integer, "", false, true};
+  count.single_when_mixed = true;
+  ParticleStore m;
+  m.set_mixed_precision(true);
+  EXPECT_THROW(m.require(count), std::logic_error);  // only reals can be kept in float
+}
+
 // The re-sort's order: by cell (z, then y, then x), stable within a cell, points outside the box in
 // its edge cells, and a box far larger than the points costs a bounded grid, not one cell per spacing.
 TEST(CellOrder, SortsByCellAndBoundsTheGrid) {

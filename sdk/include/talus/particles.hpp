@@ -3,6 +3,14 @@
 // allocated. Every field is one contiguous array (a Vec3 field is an array of
 // Vec3), so a pair loop touches only the arrays it needs.
 //
+// Mixed precision (set_mixed_precision, before any field is required): a
+// field whose metadata allows it (FieldInfo::single_when_mixed) is stored in
+// float, as scalar_f32 or vector_f32, and read and written through
+// scalar_f32() / vector_f32() or column<T>(); scalar() and vector() refuse it.
+// A field is kept in float only if every require() of it allows that: a
+// require() that does not widens it to double.
+// Positions, ids, bodies and materials always keep their types.
+//
 // Always present: "id" (global id, survives re-sorting, removal and moving to
 // another rank), "body" (index of the scene body), "material" (index of the
 // material, or -1), "position".
@@ -18,6 +26,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -26,7 +35,10 @@
 
 namespace talus {
 
-enum class FieldType { scalar, vector, integer, id };
+enum class FieldType { scalar, vector, integer, id, scalar_f32, vector_f32 };
+
+// The type's name, as errors and checkpoints print it.
+TALUS_API const char* field_type_name(FieldType type);
 
 // What the host and the writers need to know about a field.
 struct FieldInfo {
@@ -35,6 +47,9 @@ struct FieldInfo {
   std::string unit;       // SI unit text
   bool output = true;     // written by writers that write "all" fields
   bool restart = true;    // saved in checkpoints (state, not derived)
+  // A scalar or vector field that may be kept in float when the store is in
+  // mixed precision; its type in the store then becomes scalar_f32 or vector_f32.
+  bool single_when_mixed = false;
 };
 
 class TALUS_API ParticleStore {
@@ -48,8 +63,14 @@ class TALUS_API ParticleStore {
   // Bytes of one particle's value of a field of this type.
   static std::size_t element_bytes(FieldType type);
 
+  // Whether fields that allow it are stored in float. Set it before the first
+  // require() of such a field (the host does, from the scene).
+  void set_mixed_precision(bool mixed);
+  bool mixed_precision() const { return mixed_; }
+
   // Registers a field if it does not exist yet (idempotent; the type must
   // match an existing registration) and returns nothing: use the accessors.
+  // info(name).type is the type the field is stored in.
   void require(const FieldInfo& info);
   bool has(std::string_view name) const;
   const FieldInfo& info(std::string_view name) const;
@@ -63,6 +84,51 @@ class TALUS_API ParticleStore {
   std::span<const std::int32_t> integer(std::string_view name) const;
   std::span<std::uint64_t> ids();
   std::span<const std::uint64_t> ids() const;
+  std::span<float> scalar_f32(std::string_view name);
+  std::span<const float> scalar_f32(std::string_view name) const;
+  std::span<Vec3f> vector_f32(std::string_view name);
+  std::span<const Vec3f> vector_f32(std::string_view name) const;
+  // A scalar or vector field by the type it is stored in (double, float,
+  // Vec3 or Vec3f), for code written once for both precisions.
+  template <class T>
+  std::span<T> column(std::string_view name) {
+    return {static_cast<T*>(column_data(name, type_of<T>())), size_};
+  }
+  template <class T>
+  std::span<const T> column(std::string_view name) const {
+    return {static_cast<const T*>(column_data(name, type_of<T>())), size_};
+  }
+  // f(column) with a scalar field's column in the type it is stored in (a
+  // span of double or float; f is generic), and the same for a vector field
+  // (Vec3 or Vec3f): for code that is not worth writing twice.
+  template <class F>
+  void visit_scalar(std::string_view name, F&& f) const {
+    if (info(name).type == FieldType::scalar_f32)
+      f(column<float>(name));
+    else
+      f(column<double>(name));
+  }
+  template <class F>
+  void visit_scalar(std::string_view name, F&& f) {
+    if (info(name).type == FieldType::scalar_f32)
+      f(column<float>(name));
+    else
+      f(column<double>(name));
+  }
+  template <class F>
+  void visit_vector(std::string_view name, F&& f) const {
+    if (info(name).type == FieldType::vector_f32)
+      f(column<Vec3f>(name));
+    else
+      f(column<Vec3>(name));
+  }
+  template <class F>
+  void visit_vector(std::string_view name, F&& f) {
+    if (info(name).type == FieldType::vector_f32)
+      f(column<Vec3f>(name));
+    else
+      f(column<Vec3>(name));
+  }
   // Any field as raw bytes, element_bytes(type) per particle: for code that
   // moves whole particles without knowing their fields (checkpoints, ranks).
   std::span<std::byte> bytes(std::string_view name);
@@ -96,13 +162,28 @@ class TALUS_API ParticleStore {
 
  private:
   using Column = std::variant<std::vector<double>, std::vector<Vec3>, std::vector<std::int32_t>,
-                              std::vector<std::uint64_t>>;
+                              std::vector<std::uint64_t>, std::vector<float>, std::vector<Vec3f>>;
   struct Field {
     FieldInfo info;
     Column data;
   };
   Field& field(std::string_view name, FieldType type);
   const Field& field(std::string_view name, FieldType type) const;
+
+  template <class T>
+  static constexpr FieldType type_of() {
+    using U = std::remove_const_t<T>;
+    static_assert(std::is_same_v<U, double> || std::is_same_v<U, float> || std::is_same_v<U, Vec3> ||
+                      std::is_same_v<U, Vec3f>,
+                  "column<T>: T is double, float, Vec3 or Vec3f");
+    if constexpr (std::is_same_v<U, double>) return FieldType::scalar;
+    else if constexpr (std::is_same_v<U, float>) return FieldType::scalar_f32;
+    else if constexpr (std::is_same_v<U, Vec3>) return FieldType::vector;
+    else return FieldType::vector_f32;
+  }
+  static void widen(Field& f);  // a float column to double
+  const void* column_data(std::string_view name, FieldType type) const;
+  void* column_data(std::string_view name, FieldType type);
 
   void resize_columns(std::size_t n);
   void require_no_halo(const char* operation) const;
@@ -111,6 +192,7 @@ class TALUS_API ParticleStore {
   std::size_t size_ = 0;
   std::size_t halo_ = 0;
   std::uint64_t next_id_ = 0;
+  bool mixed_ = false;
 };
 
 }  // namespace talus

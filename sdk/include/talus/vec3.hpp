@@ -34,4 +34,18 @@ constexpr double norm2(const Vec3& a) { return dot(a, a); }
 inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
 inline bool is_finite(const Vec3& a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
 
+// A 3-vector kept in single precision (a field stored in float under mixed
+// precision, particles.hpp). Storage only: it converts to and from Vec3 both
+// ways, and the arithmetic is Vec3's, in double.
+struct Vec3f {
+  float x = 0.0f, y = 0.0f, z = 0.0f;
+
+  constexpr Vec3f() = default;
+  constexpr Vec3f(const Vec3& v)
+      : x(static_cast<float>(v.x)), y(static_cast<float>(v.y)), z(static_cast<float>(v.z)) {}
+  constexpr operator Vec3() const { return {x, y, z}; }
+};
+
+inline bool is_finite(const Vec3f& a) { return is_finite(Vec3(a)); }
+
 }  // namespace talus
