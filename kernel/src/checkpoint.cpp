@@ -151,16 +151,15 @@ void load_store(In& in, ParticleStore& store, const std::string& which, std::pai
     if (std::find(seen.begin(), seen.end(), name) != seen.end()) in.fail(which + " field '" + name + "' appears twice");
     seen.push_back(name);
     const FieldType type = store.info(name).type;
-    if (type_byte != static_cast<std::uint8_t>(type))
-      in.fail(which + " field '" + name + "' has type " + std::to_string(type_byte) + ", this scene's has " +
-              std::to_string(static_cast<int>(type)));
-    const std::string what = which + " field '" + name + "'";
-    switch (type) {
-      case FieldType::scalar: { auto s = store.scalar(name); in.rows_into(s.data(), first, s.size(), n, sizeof s[0], what); break; }
-      case FieldType::vector: { auto s = store.vector(name); in.rows_into(s.data(), first, s.size(), n, sizeof s[0], what); break; }
-      case FieldType::integer: { auto s = store.integer(name); in.rows_into(s.data(), first, s.size(), n, sizeof s[0], what); break; }
-      case FieldType::id: { auto s = store.ids(); in.rows_into(s.data(), first, s.size(), n, sizeof s[0], what); break; }
+    if (type_byte != static_cast<std::uint8_t>(type)) {
+      const std::string saved = type_byte <= static_cast<std::uint8_t>(FieldType::vector_f32)
+                                    ? field_type_name(static_cast<FieldType>(type_byte))
+                                    : "unknown (" + std::to_string(type_byte) + ")";
+      in.fail(which + " field '" + name + "' is " + saved + ", this scene's is " + field_type_name(type));
     }
+    const auto column = store.bytes(name);
+    const std::size_t element = ParticleStore::element_bytes(type);
+    in.rows_into(column.data(), first, column.size() / element, n, element, which + " field '" + name + "'");
   }
 }
 

@@ -89,22 +89,24 @@ struct Checker {
       }
     }
     for (const auto& f : s.fields()) {
-      if (f.type == FieldType::scalar) {
-        const auto v = s.scalar(f.name);
-        for (std::size_t i = 0; i < n; ++i)
-          if (!std::isfinite(v[i])) fail(particle(i) + " has non-finite " + f.name + " (" + text(v[i]) + ")");
-      } else if (f.type == FieldType::vector) {
-        const auto v = s.vector(f.name);
-        for (std::size_t i = 0; i < n; ++i)
-          if (!is_finite(v[i])) fail(particle(i) + " has a non-finite " + f.name);
-      }
+      if (f.type == FieldType::scalar || f.type == FieldType::scalar_f32)
+        s.visit_scalar(f.name, [&](auto v) {
+          for (std::size_t i = 0; i < n; ++i)
+            if (!std::isfinite(v[i])) fail(particle(i) + " has non-finite " + f.name + " (" + text(v[i]) + ")");
+        });
+      else if (f.type == FieldType::vector || f.type == FieldType::vector_f32)
+        s.visit_vector(f.name, [&](auto v) {
+          for (std::size_t i = 0; i < n; ++i)
+            if (!is_finite(v[i])) fail(particle(i) + " has a non-finite " + f.name);
+        });
     }
     if (fluid)
       for (const char* name : {"mass", "density"}) {
         if (!s.has(name)) continue;  // not every pipeline reads them
-        const auto v = s.scalar(name);
-        for (std::size_t i = 0; i < n; ++i)
-          if (!(v[i] > 0.0)) fail(particle(i) + " has " + name + " " + text(v[i]) + ", not > 0");
+        s.visit_scalar(name, [&](auto v) {
+          for (std::size_t i = 0; i < n; ++i)
+            if (!(v[i] > 0.0)) fail(particle(i) + " has " + name + " " + text(v[i]) + ", not > 0");
+        });
       }
   }
 

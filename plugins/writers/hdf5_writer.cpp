@@ -141,11 +141,12 @@ void Hdf5Writer::write_particles(hid_t file, std::uint64_t index, const World& w
       h5::set_attribute(set, "component", static_cast<std::int64_t>(component), path);
     }
   };
-  auto write_vector = [&](std::span<const Vec3> v, const std::string& base, const std::string& unit, bool coordinates) {
+  // v: a span of Vec3 or of Vec3f (a field kept in float).
+  auto write_vector = [&](auto v, const std::string& base, const std::string& unit, bool coordinates) {
     static const char* const axes[] = {"x", "y", "z"};
     column_.resize(n);
     for (int c = 0; c < 3; ++c) {
-      for (std::size_t i = 0; i < n; ++i) column_[i] = v[i][c];
+      for (std::size_t i = 0; i < n; ++i) column_[i] = Vec3(v[i])[c];
       // ParaView's H5Part reader takes the points from x, y, z and joins
       // NAME_0, NAME_1, NAME_2 into one vector array NAME.
       const std::string name = coordinates ? axes[c] : base + "_" + std::to_string(c);
@@ -161,6 +162,15 @@ void Hdf5Writer::write_particles(hid_t file, std::uint64_t index, const World& w
         break;
       case FieldType::vector:
         write_vector(store.vector(f.name), f.name, f.unit, false);
+        break;
+      case FieldType::scalar_f32: {
+        const auto v = store.scalar_f32(f.name);
+        column_.assign(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(n));
+        write_real(f.name, column_.data(), f.unit, nullptr, 0);
+        break;
+      }
+      case FieldType::vector_f32:
+        write_vector(store.vector_f32(f.name), f.name, f.unit, false);
         break;
       case FieldType::integer: {
         h5::write_dataset(group, f.name, H5T_STD_I32LE, H5T_NATIVE_INT32, store.integer(f.name).data(), n, 0, path,

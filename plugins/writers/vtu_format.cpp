@@ -115,14 +115,17 @@ void build_vtu(std::string& out, const ParticleStore& store, const std::vector<F
 
   std::string scalars, vectors;
   for (const auto& f : fields) {
-    if (f.type == FieldType::scalar && scalars.empty()) scalars = f.name;
-    if (f.type == FieldType::vector && vectors.empty()) vectors = f.name;
+    const bool scalar = f.type == FieldType::scalar || f.type == FieldType::scalar_f32;
+    const bool vector = f.type == FieldType::vector || f.type == FieldType::vector_f32;
+    if (scalar && scalars.empty()) scalars = f.name;
+    if (vector && vectors.empty()) vectors = f.name;
   }
   out += "      <PointData";
   if (!scalars.empty()) out += " Scalars=\"" + scalars + "\"";
   if (!vectors.empty()) out += " Vectors=\"" + vectors + "\"";
   out += ">\n";
   const char* in = "        ";
+  std::vector<double> widened;
   for (const auto& f : fields) {
     switch (f.type) {
       case FieldType::scalar:
@@ -137,6 +140,20 @@ void build_vtu(std::string& out, const ParticleStore& store, const std::vector<F
       case FieldType::id:
         doc.array(f.name, 1, store.ids().data(), n, f.unit, in);
         break;
+      case FieldType::scalar_f32: {  // written as every real field, from a copy in double
+        const auto v = store.scalar_f32(f.name);
+        widened.assign(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(n));
+        doc.reals(f.name, 1, widened.data(), n, f.unit, in, scratch);
+        break;
+      }
+      case FieldType::vector_f32: {
+        const auto v = store.vector_f32(f.name);
+        widened.resize(3 * n);
+        for (std::size_t i = 0; i < n; ++i)
+          for (int c = 0; c < 3; ++c) widened[3 * i + c] = Vec3(v[i])[c];
+        doc.reals(f.name, 3, widened.data(), 3 * n, f.unit, in, scratch);
+        break;
+      }
     }
   }
   out += "      </PointData>\n";

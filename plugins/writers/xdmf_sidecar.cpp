@@ -37,17 +37,19 @@ std::string build_xdmf(const std::string& h5_file, const std::vector<XdmfFrame>&
     for (const auto& f : fields) {
       switch (f.type) {
         case FieldType::scalar:
+        case FieldType::scalar_f32:  // written in the file's real type, as every real field
         case FieldType::integer:
         case FieldType::id: {
-          const NumberType t = f.type == FieldType::scalar    ? real
-                               : f.type == FieldType::integer ? NumberType{"Int", 4}
-                                                              : NumberType{"UInt", 8};
+          const NumberType t = f.type == FieldType::integer ? NumberType{"Int", 4}
+                               : f.type == FieldType::id    ? NumberType{"UInt", 8}
+                                                            : real;
           out += "        <Attribute Name=\"" + f.name + "\" AttributeType=\"Scalar\" Center=\"Node\">\n";
           data_item(out, "          ", group + f.name, n, t);
           out += "        </Attribute>\n";
           break;
         }
         case FieldType::vector:
+        case FieldType::vector_f32:
           // The components are separate datasets NAME_0/1/2: joined into one vector.
           out += "        <Attribute Name=\"" + f.name + "\" AttributeType=\"Vector\" Center=\"Node\">\n";
           out +=

@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "checkpoint.hpp"
 #include "crc32.hpp"
 #include "plugin_registry.hpp"
 #include "process.hpp"
@@ -159,6 +160,64 @@ class CheckpointTest : public ::testing::Test {
 };
 
 std::string CheckpointTest::scene_, CheckpointTest::good_, CheckpointTest::bad_, CheckpointTest::bytes_;
+
+// A field kept in float (mixed precision) is saved and loaded in float, bit for bit; a store
+// that keeps it in double refuses the file and names both types.
+TEST(Checkpoint, KeepsAFieldInTheFloatItWasSavedIn) {
+  const std::string dir = scratch("float_field");
+  talus::FieldInfo density{"density", talus::FieldType::scalar, "kg/m^3", true, true};
+  density.single_when_mixed = true;
+  talus::FieldInfo velocity{"velocity", talus::FieldType::vector, "m/s", true, true};
+  velocity.single_when_mixed = true;
+  auto make = [&](talus::World& w, bool mixed) {
+    w.lo = {-1, -1, -1};
+    w.hi = {1, 1, 1};
+    w.dp = 0.1;
+    talus::Body body;
+    body.name = "water";
+    body.kind = talus::BodyKind::fluid;
+    body.material = 0;
+    w.bodies.push_back(body);
+    talus::Material water;
+    water.name = "water";
+    water.density = 1000.0;
+    w.materials.push_back(water);
+    w.fluid.set_mixed_precision(mixed);
+    w.fluid.require(density);
+    w.fluid.require(velocity);
+  };
+  talus::World saved;
+  make(saved, true);
+  saved.fluid.append(5);
+  for (std::size_t i = 0; i < 5; ++i) {
+    saved.fluid.position()[i] = {0.1 * static_cast<double>(i), 0.0, 0.0};
+    saved.fluid.scalar_f32("density")[i] = 1000.0f + 0.1f * static_cast<float>(i);
+    saved.fluid.vector_f32("velocity")[i] = talus::Vec3{1.0 / 3.0, -static_cast<double>(i), 2.5};
+  }
+  const std::string path = dir + "/float.ckpt";
+  talus::save_checkpoint(path, saved, talus::RunState{});
+
+  talus::World loaded;
+  make(loaded, true);
+  talus::load_checkpoint(path, loaded, 0);
+  ASSERT_EQ(loaded.fluid.size(), 5u);
+  for (std::size_t i = 0; i < 5; ++i) {
+    EXPECT_EQ(loaded.fluid.scalar_f32("density")[i], saved.fluid.scalar_f32("density")[i]);
+    EXPECT_EQ(talus::Vec3(loaded.fluid.vector_f32("velocity")[i]),
+              talus::Vec3(saved.fluid.vector_f32("velocity")[i]));
+  }
+
+  talus::World in_double;
+  make(in_double, false);
+  try {
+    talus::load_checkpoint(path, in_double, 0);
+    FAIL() << "a float field was loaded into a double one";
+  } catch (const talus::InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path), std::string::npos) << what;
+    EXPECT_NE(what.find("is scalar_f32, this scene's is scalar"), std::string::npos) << what;
+  }
+}
 
 TEST(Crc32, MatchesTheStandardCheckValue) {
   EXPECT_EQ(talus::crc32("123456789", 9), 0xCBF43926u);

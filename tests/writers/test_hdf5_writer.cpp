@@ -181,6 +181,41 @@ TEST(Hdf5Writer, RoundTripIsExact) {
 // every data path it names exists in the HDF5 file with that many values.
 // A tessellated slope has thousands of blocks, all named in the root's
 // "bodies" attribute: past 64 KiB, which only dense attribute storage holds.
+// Fields kept in float (mixed precision) are written like every real field, in the file's real
+// type, with the float values exactly.
+TEST(Hdf5Writer, WritesFieldsKeptInFloat) {
+  TempDir dir("h5-float-fields");
+  World w;
+  w.fluid.set_mixed_precision(true);
+  test::fill_lattice(w, 3, {0, 0, 0}, 4, 3, 2, 0.02);
+  FieldInfo speed{"speed", FieldType::scalar, "m/s", true, false};
+  speed.single_when_mixed = true;
+  FieldInfo drift{"drift", FieldType::vector, "m", true, false};
+  drift.single_when_mixed = true;
+  w.fluid.require(speed);
+  w.fluid.require(drift);
+  ASSERT_EQ(w.fluid.info("speed").type, FieldType::scalar_f32);
+  const std::size_t n = w.fluid.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    w.fluid.scalar_f32("speed")[i] = static_cast<float>(1.0 / (i + 3.0));
+    w.fluid.vector_f32("drift")[i] = Vec3{0.1 * i, -1.0 / 3.0, 2.0 + i};
+  }
+  auto writer = make_writer("{}");
+  writer->open(test::context_for(dir.str()), w);
+  writer->write(w);
+  writer->close(w);
+  File f(dir.file("scene.h5part"));
+  ASSERT_GE(f.id, 0);
+  const auto s = read_dataset<double>(f.id, "Step#0/speed", H5T_NATIVE_DOUBLE);
+  ASSERT_EQ(s.size(), n);
+  for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(s[i], static_cast<double>(w.fluid.scalar_f32("speed")[i]));
+  for (int c = 0; c < 3; ++c) {
+    const auto d = read_dataset<double>(f.id, "Step#0/drift_" + std::to_string(c), H5T_NATIVE_DOUBLE);
+    ASSERT_EQ(d.size(), n);
+    for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(d[i], Vec3(w.fluid.vector_f32("drift")[i])[c]) << i << " " << c;
+  }
+}
+
 TEST(Hdf5Writer, NamesThousandsOfBodies) {
   TempDir dir("h5-bodies");
   World w;
