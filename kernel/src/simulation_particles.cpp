@@ -84,23 +84,29 @@ void Simulation::check_finite() const {
   const ParticleStore& f = world_.fluid;
   const std::size_t n = f.owned_size();
   const auto x = f.position();
-  // The start-state fields the stages read (a run-out scene has no pressure).
-  const auto u = f.has("velocity") ? f.vector("velocity") : std::span<const Vec3>{};
-  const auto rho = f.has("density") ? f.scalar("density") : std::span<const double>{};
-  const auto p = f.has("pressure") ? f.scalar("pressure") : std::span<const double>{};
-  auto non_finite = [&](std::size_t i) -> const char* {
-    if (!is_finite(x[i])) return "position";
-    if (!u.empty() && !is_finite(u[i])) return "velocity";
-    if (!rho.empty() && !std::isfinite(rho[i])) return "density";
-    if (!p.empty() && !std::isfinite(p[i])) return "pressure";
-    return nullptr;
-  };
-  std::size_t bad = n;
+  // The first non-finite row of each start-state field the stages read (a
+  // run-out scene has no pressure), each in the type it is stored in.
+  auto first_bad = [&](auto column, auto finite) {
+    std::size_t bad = n;
 #pragma omp parallel for reduction(min : bad) schedule(static) if (n > 4096)
-  for (std::size_t i = 0; i < n; ++i)
-    if (non_finite(i)) bad = std::min(bad, i);
+    for (std::size_t i = 0; i < n; ++i)
+      if (!finite(column[i])) bad = std::min(bad, i);
+    return bad;
+  };
+  auto finite_vector = [](const auto& v) { return is_finite(v); };
+  auto finite_scalar = [](auto v) { return std::isfinite(v); };
+  std::size_t bad = first_bad(x, finite_vector);
+  const char* what = "position";
+  auto check = [&](const char* name, std::size_t found) {
+    if (found < bad) {
+      bad = found;
+      what = name;
+    }
+  };
+  if (f.has("velocity")) f.visit_vector("velocity", [&](auto u) { check("velocity", first_bad(u, finite_vector)); });
+  for (const char* name : {"density", "pressure"})
+    if (f.has(name)) f.visit_scalar(name, [&](auto v) { check(name, first_bad(v, finite_scalar)); });
   if (bad == n) return;
-  const char* what = non_finite(bad);
   const int body = f.body()[bad];
   std::ostringstream msg;
   msg << "error: step " << world_.step << " (t = " << fixed(world_.time, 6) << " s): particle " << f.ids()[bad]

@@ -120,13 +120,14 @@ void start_hydrostatic(World& world, const std::vector<ParamValues>& bodies) {
     density[i] = world.materials[material[i]].density;
   }
   const std::vector<double> p = hydrostatic_pressure(fluid.position(), spacing, density, world.gravity, world.dim);
-  auto pressure = fluid.scalar("pressure");
-  auto rho = fluid.scalar("density");
-  for (std::size_t i = 0; i < fluid.size(); ++i) {
-    if (!hydrostatic[body[i]]) continue;
-    pressure[i] = p[i];
-    rho[i] = world.materials[material[i]].eos->density_at(p[i]);
-  }
+  fluid.visit_scalar("pressure", [&](auto pressure) {
+    for (std::size_t i = 0; i < fluid.size(); ++i)
+      if (hydrostatic[body[i]]) pressure[i] = p[i];
+  });
+  fluid.visit_scalar("density", [&](auto rho) {
+    for (std::size_t i = 0; i < fluid.size(); ++i)
+      if (hydrostatic[body[i]]) rho[i] = world.materials[material[i]].eos->density_at(p[i]);
+  });
 }
 
 }  // namespace
@@ -247,12 +248,20 @@ void Simulation::fill_bodies(const std::vector<std::string>& fields) {
         bid[first + k] = static_cast<std::int32_t>(bi);
         mid[first + k] = body.material;
       }
-      auto fill = [&](auto field, auto value) { std::fill(field.begin() + first, field.end(), value); };
-      if (velocity) fill(fluid.vector("velocity"), v.vector("velocity"));
-      if (density) fill(fluid.scalar("density"), m.density);
-      if (pressure) fill(fluid.scalar("pressure"), 0.0);
+      // Each field in the type it is stored in (float under mixed precision).
+      auto fill_scalar = [&](const char* name, double value) {
+        fluid.visit_scalar(name, [&](auto field) {
+          std::fill(field.begin() + first, field.end(), static_cast<typename decltype(field)::value_type>(value));
+        });
+      };
+      if (velocity)
+        fluid.visit_vector("velocity", [&](auto field) {
+          std::fill(field.begin() + first, field.end(), typename decltype(field)::value_type(v.vector("velocity")));
+        });
+      if (density) fill_scalar("density", m.density);
+      if (pressure) fill_scalar("pressure", 0.0);
       const ParamValues& shape = v.alternative_values("shape");
-      if (mass) fill(fluid.scalar("mass"), m.density * lattice_volume(alt, shape, body.dp, world_.dim));
+      if (mass) fill_scalar("mass", m.density * lattice_volume(alt, shape, body.dp, world_.dim));
       if (const std::string adjusted = lattice_adjustment(alt, shape, body.dp, world_.dim); !adjusted.empty())
         world_.warnings.add("fluid '" + body.name + "' (" + v.pointer("shape") + "): " + adjusted);
     }
