@@ -24,6 +24,7 @@
 #include "talus/stage.hpp"
 #include "talus/world.hpp"
 #include "talus/writer.hpp"
+#include "text.hpp"
 
 namespace talus {
 
@@ -41,11 +42,19 @@ double peak_memory_mib() {
   return usage.ru_maxrss / 1024.0;
 }
 
+std::string fields_in_float(const ParticleStore& store) {
+  std::vector<std::string> names;
+  for (const FieldInfo& f : store.fields())
+    if (f.type == FieldType::scalar_f32 || f.type == FieldType::vector_f32) names.push_back(f.name);
+  return names.empty() ? "none" : text::join(names);
+}
+
 const std::vector<std::string>& summary_keys() {
   static const std::vector<std::string> keys = {
       "scene",     "steps",     "time",    "wall_seconds", "fluid_particles", "wall_particles",
       "blocks",    "particle_steps", "wall_particle_steps", "peak_memory_mib", "removed", "wall_crossings",
-      "warnings",  "threads",   "finish",  "phases_s",     "stages",          "outputs", "results", "ranks"};
+      "warnings",  "threads",   "finish",  "phases_s",     "stages",          "outputs", "results", "ranks",
+      "precision"};
   return keys;
 }
 
@@ -65,6 +74,9 @@ void write_summary_file(const RunSummary& r, const std::string& path) {
                             {"wall_crossings", world.wall_crossings},
                             {"warnings", world.warnings.all()},
                             {"threads", omp_get_max_threads()},
+                            {"precision", {{"mode", world.fluid.mixed_precision() ? "mixed" : "double"},
+                                           {"fluid_in_float", fields_in_float(world.fluid)},
+                                           {"walls_in_float", fields_in_float(world.boundary)}}},
                             {"finish", r.finish_lines},
                             {"ranks", {{"count", r.ranks.count},
                                        {"imbalance", r.ranks.imbalance},

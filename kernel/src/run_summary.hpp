@@ -12,6 +12,7 @@
 
 namespace talus {
 
+class ParticleStore;
 class Stage;
 class World;
 struct ScheduledWriter;
@@ -47,6 +48,10 @@ struct RunSummary {
 
 // The peak resident memory of this process so far, MiB.
 double peak_memory_mib();
+
+// The fields a store keeps in float (mixed precision), in registration order,
+// as one text: "none" when there are none.
+std::string fields_in_float(const ParticleStore& store);
 
 // The summary file's top-level keys (what `talus study` measures may name).
 TALUS_API const std::vector<std::string>& summary_keys();

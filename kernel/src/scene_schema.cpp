@@ -164,6 +164,11 @@ ParamSet make_scene() {
       .optional()
       .doc("extra SPH pair terms (plugins) that the wcsph stage adds to its rates, each as its own pass, in order");
   s.object("time", time_params()).doc("the time loop");
+  s.choice("precision", {"double", "mixed"})
+      .default_value("double")
+      .doc("how particle fields are stored: double, or mixed: the fields whose stage allows it in float (4 bytes "
+           "instead of 8), positions and every other field in double; arithmetic is in double either way. The "
+           "run prints which fields are in float (summary: precision)");
   s.model_list("outputs", "writer", output_common()).optional().doc("writers and probes");
   s.object("checkpoint", checkpoint_params()).optional().doc("restart files");
   s.object("ranks", ranks_params()).optional().doc("the decomposition over MPI ranks (`mpirun -np N talus run`)");

@@ -41,6 +41,10 @@ Simulation::Simulation(PluginRegistry& registry, Scene scene) : registry_(regist
   world_.gravity = s.vector("gravity");
   world_.end_time = s.object("time").real("end");
   resort_every_ = static_cast<std::uint64_t>(s.object("time").integer("resort_every"));
+  // Before any field exists: the stores choose each field's type as it is required.
+  const bool mixed = s.string("precision") == "mixed";
+  world_.fluid.set_mixed_precision(mixed);
+  world_.boundary.set_mixed_precision(mixed);
 
   build_materials();
   build_kernel();
@@ -128,6 +132,9 @@ int Simulation::run(const RunOptions& options) {
                 walls_at_start,
                 world_.blocks ? (", " + std::to_string(world_.blocks->size()) + " blocks").c_str() : "",
                 fixed(world_.end_time).c_str(), output_directory_.c_str());
+  if (!options.quiet && root && world_.fluid.mixed_precision())
+    std::printf("talus: mixed precision: in float: fluid %s; walls %s\n",
+                fields_in_float(world_.fluid).c_str(), fields_in_float(world_.boundary).c_str());
   print_new_warnings();
 
   try {
