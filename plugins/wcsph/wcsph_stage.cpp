@@ -206,8 +206,12 @@ void WcsphStage::setup(World& world) {
   }
 
   if (integrator_ == Integrator::verlet) {
-    std::ranges::copy(s.vector("velocity"), s.vector("velocity_prev").begin());
-    std::ranges::copy(s.scalar("density"), s.scalar("density_prev").begin());
+    s.visit_vector("velocity_prev", [&](auto v_prev) { std::ranges::copy(s.vector("velocity"), v_prev.begin()); });
+    s.visit_scalar("density_prev", [&](auto rho_prev) {
+      std::ranges::transform(s.scalar("density"), rho_prev.begin(), [](double rho) {
+        return static_cast<typename decltype(rho_prev)::value_type>(rho);
+      });
+    });
   }
   verlet_counter_ = 0;
   rates_valid_ = false;
