@@ -45,6 +45,9 @@ def main():
     parser.add_argument("--walls", choices=["dbc", "mdbc"], default=None,
                         help="run every case that has particle walls (dynamic_particles, block_particles) with this "
                              "wall method; the option label says so, cases without such walls are skipped")
+    parser.add_argument("--precision", choices=["double", "mixed"], default=None,
+                        help="run every case with this scene \"precision\" (mixed: the fields that allow it in float); "
+                             "the option label says so")
     args = parser.parse_args()
 
     cases = registry.load_cases()
@@ -67,7 +70,8 @@ def main():
     results = []
     for case in cases:
         results.extend(runner.run_case(case, args.talus, root, out, quick=args.quick, threads=args.threads,
-                                      reuse=args.reuse, walls=args.walls, jobs=max(1, args.jobs)))
+                                      reuse=args.reuse, walls=args.walls, precision=args.precision,
+                                      jobs=max(1, args.jobs)))
     # Re-running some cases updates an existing report: the other cases keep their stored results.
     all_cases = registry.load_cases()
     if args.case and not args.quick:

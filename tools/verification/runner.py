@@ -155,12 +155,12 @@ def run_study(talus, directory, scenes, threads, jobs, reuse):
     return rows
 
 
-def run_case(case, talus, root, out, quick=False, threads=2, reuse=False, walls=None, jobs=1):
+def run_case(case, talus, root, out, quick=False, threads=2, reuse=False, walls=None, precision=None, jobs=1):
     """Runs the case's ladder (one rung with quick) over its options as one `talus study` in out/runs/CASE, `jobs`
     runs side by side with `threads` each, and judges each run. With reuse, a study stored there with the same
     variants is not run again (finished runs are judged again: new tolerances or gates). With walls ("dbc" or
     "mdbc"), every particle wall of the case's scenes uses that method, and the option label says so; a case
-    without particle walls is skipped."""
+    without particle walls is skipped. With precision ("double" or "mixed"), every scene has that "precision"."""
     ladder = list(case.LADDER)
     if quick:
         ladder = [ladder[getattr(case, "QUICK_INDEX", 0)]]
@@ -179,6 +179,9 @@ def run_case(case, talus, root, out, quick=False, threads=2, reuse=False, walls=
                     print(f"verify: {case.NAME}: no particle walls, --walls {walls} does not apply", flush=True)
                     return []
                 shown["walls"] = walls
+            if precision:
+                scene["precision"] = precision
+                shown["precision"] = precision
             if hasattr(case, "prepare"):  # files the scene names beside it (a release raster)
                 files = os.path.join(directory, "files", f"{len(planned) + 1:03d}")
                 os.makedirs(files, exist_ok=True)
