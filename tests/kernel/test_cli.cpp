@@ -169,6 +169,39 @@ TEST(Cli, WcsphRestartWithWallsContinuesBitForBit) {
       << "restarted wcsph run differs from the uninterrupted one";
 }
 
+// The same scene in mixed precision: the run says which fields it keeps in float (the
+// integrator's saved state), the summary lists them, and a restart still continues bit for bit.
+TEST(Cli, MixedPrecisionListsItsFloatFieldsAndRestartsBitForBit) {
+  auto scene_json =
+      nlohmann::json::parse(read_file(std::string(TALUS_SOURCE_DIR) + "/tests/verification/water_drop_2d.json"));
+  scene_json["precision"] = "mixed";
+  const std::string a = fresh_dir("mixed_restart_a"), b = fresh_dir("mixed_restart_b");
+  fs::create_directories(a);
+  const std::string scene = a + "/water_drop_mixed.json";
+  talus::test::write_file(scene, scene_json.dump(1));
+  const auto full = run_command(std::string(TALUS_EXE) + " run " + scene + " --threads 1 --out " + a + " --summary " +
+                                a + "/summary.json");
+  ASSERT_EQ(full.exit_code, 0) << full.output;
+  EXPECT_NE(full.output.find("talus: mixed precision: in float: fluid velocity_n, density_n; walls none"),
+            std::string::npos)
+      << full.output;
+  const auto summary = nlohmann::json::parse(read_file(a + "/summary.json"));
+  EXPECT_EQ(summary["precision"]["mode"], "mixed");
+  EXPECT_EQ(summary["precision"]["fluid_in_float"], "velocity_n, density_n");
+  std::vector<fs::path> checkpoints;
+  for (const auto& e : fs::directory_iterator(a))
+    if (e.path().extension() == ".checkpoint") checkpoints.push_back(e.path());
+  std::sort(checkpoints.begin(), checkpoints.end());
+  ASSERT_GE(checkpoints.size(), 2u);
+  const auto resumed = run_command(std::string(TALUS_EXE) + " run " + scene + " --quiet --threads 1 --out " + b +
+                                   " --restart " + checkpoints.front().string());
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  const fs::path end_b = fs::path(b) / checkpoints.back().filename();
+  ASSERT_TRUE(fs::exists(end_b)) << end_b;
+  EXPECT_TRUE(read_file(checkpoints.back().string()) == read_file(end_b.string()))
+      << "restarted mixed-precision run differs from the uninterrupted one";
+}
+
 // A smoothing length far outside what SPH uses is refused at validation:
 // 1e-308 dp made the kernel table read out of bounds, 1e9 dp overflowed the
 // viscous support count.
