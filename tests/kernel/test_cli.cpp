@@ -31,6 +31,23 @@ std::string fresh_dir(const std::string& name) {
   return dir;
 }
 
+// The run of `scene` in `a` wrote checkpoints: restarted in `b` from the first, it must end on
+// the same bytes as the last.
+void expect_restart_ends_on_the_same_checkpoint(const std::string& scene, const std::string& a, const std::string& b) {
+  std::vector<fs::path> checkpoints;
+  for (const auto& e : fs::directory_iterator(a))
+    if (e.path().extension() == ".checkpoint") checkpoints.push_back(e.path());
+  std::sort(checkpoints.begin(), checkpoints.end());
+  ASSERT_GE(checkpoints.size(), 2u);
+  const auto resumed = run_command(std::string(TALUS_EXE) + " run " + scene + " --quiet --threads 1 --out " + b +
+                                   " --restart " + checkpoints.front().string());
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  const fs::path end_b = fs::path(b) / checkpoints.back().filename();
+  ASSERT_TRUE(fs::exists(end_b)) << end_b;
+  EXPECT_TRUE(read_file(checkpoints.back().string()) == read_file(end_b.string()))
+      << "the run restarted from " << checkpoints.front() << " differs from the uninterrupted one";
+}
+
 TEST(Cli, HelpAndVersion) {
   EXPECT_EQ(run_command(exe + " --version").exit_code, 0);
   const auto help = run_command(exe + " --help");
@@ -155,18 +172,7 @@ TEST(Cli, WcsphRestartWithWallsContinuesBitForBit) {
   const std::string a = fresh_dir("wcsph_restart_a"), b = fresh_dir("wcsph_restart_b");
   const auto full = run_command(std::string(TALUS_EXE) + " run " + scene + " --quiet --threads 1 --out " + a);
   ASSERT_EQ(full.exit_code, 0) << full.output;
-  std::vector<fs::path> checkpoints;
-  for (const auto& e : fs::directory_iterator(a))
-    if (e.path().extension() == ".checkpoint") checkpoints.push_back(e.path());
-  std::sort(checkpoints.begin(), checkpoints.end());
-  ASSERT_GE(checkpoints.size(), 2u);
-  const auto resumed = run_command(std::string(TALUS_EXE) + " run " + scene + " --quiet --threads 1 --out " + b +
-                                   " --restart " + checkpoints.front().string());
-  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
-  const fs::path end_b = fs::path(b) / checkpoints.back().filename();
-  ASSERT_TRUE(fs::exists(end_b)) << end_b;
-  EXPECT_TRUE(read_file(checkpoints.back().string()) == read_file(end_b.string()))
-      << "restarted wcsph run differs from the uninterrupted one";
+  expect_restart_ends_on_the_same_checkpoint(scene, a, b);
 }
 
 // The same scene in mixed precision: the run says which fields it keeps in float (the
@@ -188,18 +194,7 @@ TEST(Cli, MixedPrecisionListsItsFloatFieldsAndRestartsBitForBit) {
   const auto summary = nlohmann::json::parse(read_file(a + "/summary.json"));
   EXPECT_EQ(summary["precision"]["mode"], "mixed");
   EXPECT_EQ(summary["precision"]["fluid_in_float"], "velocity_n, density_n");
-  std::vector<fs::path> checkpoints;
-  for (const auto& e : fs::directory_iterator(a))
-    if (e.path().extension() == ".checkpoint") checkpoints.push_back(e.path());
-  std::sort(checkpoints.begin(), checkpoints.end());
-  ASSERT_GE(checkpoints.size(), 2u);
-  const auto resumed = run_command(std::string(TALUS_EXE) + " run " + scene + " --quiet --threads 1 --out " + b +
-                                   " --restart " + checkpoints.front().string());
-  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
-  const fs::path end_b = fs::path(b) / checkpoints.back().filename();
-  ASSERT_TRUE(fs::exists(end_b)) << end_b;
-  EXPECT_TRUE(read_file(checkpoints.back().string()) == read_file(end_b.string()))
-      << "restarted mixed-precision run differs from the uninterrupted one";
+  expect_restart_ends_on_the_same_checkpoint(scene, a, b);
 }
 
 // A smoothing length far outside what SPH uses is refused at validation:

@@ -88,6 +88,15 @@ std::unique_ptr<writers::Hdf5Writer> make_writer(const std::string& json) {
   return std::make_unique<writers::Hdf5Writer>(params_from_json(writers::Hdf5Writer::describe(), json));
 }
 
+// Writes the world as the one frame of a series in `dir`; returns the file's path.
+std::string write_one_frame(const TempDir& dir, World& w) {
+  auto writer = make_writer("{}");
+  writer->open(test::context_for(dir.str()), w);
+  writer->write(w);
+  writer->close(w);
+  return dir.file("scene.h5part");
+}
+
 TEST(Hdf5Writer, RoundTripIsExact) {
   TempDir dir("h5-roundtrip");
   World w;
@@ -200,11 +209,7 @@ TEST(Hdf5Writer, WritesFieldsKeptInFloat) {
     w.fluid.scalar_f32("speed")[i] = static_cast<float>(1.0 / (i + 3.0));
     w.fluid.vector_f32("drift")[i] = Vec3{0.1 * i, -1.0 / 3.0, 2.0 + i};
   }
-  auto writer = make_writer("{}");
-  writer->open(test::context_for(dir.str()), w);
-  writer->write(w);
-  writer->close(w);
-  File f(dir.file("scene.h5part"));
+  File f(write_one_frame(dir, w));
   ASSERT_GE(f.id, 0);
   const auto s = read_dataset<double>(f.id, "Step#0/speed", H5T_NATIVE_DOUBLE);
   ASSERT_EQ(s.size(), n);
@@ -226,11 +231,7 @@ TEST(Hdf5Writer, NamesThousandsOfBodies) {
     b.name = "tetrahedron_" + std::to_string(i);
     w.bodies.push_back(b);
   }
-  auto writer = make_writer("{}");
-  writer->open(test::context_for(dir.str()), w);
-  writer->write(w);
-  writer->close(w);
-  File f(dir.file("scene.h5part"));
+  File f(write_one_frame(dir, w));
   ASSERT_GE(f.id, 0);
   hid_t a = H5Aopen(f.id, "bodies", H5P_DEFAULT);
   ASSERT_GE(a, 0);
