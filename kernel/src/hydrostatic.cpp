@@ -8,11 +8,12 @@ namespace talus {
 
 namespace {
 
-// One particle's part in one column.
+// One particle's part in one column: 16 bytes, four per particle in 3D (a
+// footprint off the columns' grid overlaps two along each axis), which made
+// this the peak of a run's set-up; the height and the covered fraction are
+// recomputed from the position where needed.
 struct Share {
   std::int64_t column;
-  double height;    // of the particle's centre, along -gravity
-  double fraction;  // of the column's cross-section that the particle's footprint covers
   std::size_t particle;
 };
 
@@ -28,14 +29,17 @@ void horizontal_axes(const Vec3& up, int dim, Vec3& e1, Vec3& e2) {
   e1 = e1 / norm(e1);
 }
 
-// The columns [k w, (k + 1) w) that [c - s/2, c + s/2] overlaps, with the overlap lengths.
+// The length of column [k w, (k + 1) w) that [c - s/2, c + s/2] overlaps.
+double overlap(double c, double s, double w, std::int64_t k) {
+  const double lo = c - 0.5 * s, hi = c + 0.5 * s;
+  return std::min(hi, (k + 1) * w) - std::max(lo, k * w);
+}
+
+// The columns that [c - s/2, c + s/2] overlaps.
 template <class F>
 void overlaps(double c, double s, double w, F&& f) {
-  const double lo = c - 0.5 * s, hi = c + 0.5 * s;
-  for (auto k = static_cast<std::int64_t>(std::floor(lo / w)); k * w < hi; ++k) {
-    const double length = std::min(hi, (k + 1) * w) - std::max(lo, k * w);
-    if (length > 1e-9 * w) f(k, length);
-  }
+  for (auto k = static_cast<std::int64_t>(std::floor((c - 0.5 * s) / w)); k * w < c + 0.5 * s; ++k)
+    if (overlap(c, s, w, k) > 1e-9 * w) f(k);
 }
 
 }  // namespace
@@ -51,23 +55,32 @@ std::vector<double> hydrostatic_pressure(std::span<const Vec3> position, std::sp
   horizontal_axes(up, dim, e1, e2);
   const double w = *std::min_element(spacing.begin(), spacing.end());
 
+  // 2^32 columns per row: more than any scene has across one axis.
+  constexpr std::int64_t row = std::int64_t{1} << 32;
+  auto height = [&](const Share& a) { return dot(position[a.particle], up); };
+  // The part of column a.column's cross-section that a's footprint covers.
+  auto fraction = [&](const Share& a) {
+    const Vec3& x = position[a.particle];
+    const double s = spacing[a.particle];
+    if (dim == 2) return overlap(dot(x, e1), s, w, a.column) / w;
+    const std::int64_t ku = (a.column + row / 2) >> 32;  // floor division: kv lies in [-2^31, 2^31)
+    const std::int64_t kv = a.column - ku * row;
+    return overlap(dot(x, e1), s, w, ku) * overlap(dot(x, e2), s, w, kv) / (w * w);
+  };
   std::vector<Share> shares;
   shares.reserve(n * (dim == 3 ? 4 : 2));
   for (std::size_t i = 0; i < n; ++i) {
-    const double s = spacing[i], h = dot(position[i], up);
-    overlaps(dot(position[i], e1), s, w, [&](std::int64_t ku, double lu) {
+    const double s = spacing[i];
+    overlaps(dot(position[i], e1), s, w, [&](std::int64_t ku) {
       if (dim == 2) {
-        shares.push_back({ku, h, lu / w, i});
+        shares.push_back({ku, i});
         return;
       }
-      overlaps(dot(position[i], e2), s, w, [&](std::int64_t kv, double lv) {
-        // 2^32 columns per row: more than any scene has across one axis.
-        shares.push_back({ku * (std::int64_t{1} << 32) + kv, h, lu * lv / (w * w), i});
-      });
+      overlaps(dot(position[i], e2), s, w, [&](std::int64_t kv) { shares.push_back({ku * row + kv, i}); });
     });
   }
-  std::sort(shares.begin(), shares.end(), [](const Share& a, const Share& b) {
-    return a.column != b.column ? a.column < b.column : a.height > b.height;
+  std::sort(shares.begin(), shares.end(), [&](const Share& a, const Share& b) {
+    return a.column != b.column ? a.column < b.column : height(a) > height(b);
   });
 
   // Down each column, layer by layer (shares within half the finest spacing in height). A layer adds its
@@ -80,19 +93,21 @@ std::vector<double> hydrostatic_pressure(std::span<const Vec3> position, std::sp
     while (b < shares.size() && shares[b].column == shares[a].column) {
       std::size_t e = b;
       double top = -HUGE_VAL, bottom = HUGE_VAL, mass = 0.0, cover = 0.0;
-      for (; e < shares.size() && shares[e].column == shares[b].column && shares[b].height - shares[e].height < 0.5 * w;
+      const double layer_top = height(shares[b]);
+      for (; e < shares.size() && shares[e].column == shares[b].column && layer_top - height(shares[e]) < 0.5 * w;
            ++e) {
-        const double s = spacing[shares[e].particle];
-        top = std::max(top, shares[e].height + 0.5 * s);
-        bottom = std::min(bottom, shares[e].height - 0.5 * s);
-        mass += density[shares[e].particle] * s * shares[e].fraction;
-        cover += shares[e].fraction;
+        const double s = spacing[shares[e].particle], h = height(shares[e]), f = fraction(shares[e]);
+        top = std::max(top, h + 0.5 * s);
+        bottom = std::min(bottom, h - 0.5 * s);
+        mass += density[shares[e].particle] * s * f;
+        cover += f;
       }
       if (previous_bottom - top > 0.5 * w) above = 0.0;  // an air gap: a new free surface
       const double layer = mass / cover;
       for (std::size_t k = b; k < e; ++k) {
-        weighted[shares[k].particle] += shares[k].fraction * g * (above + 0.5 * layer);
-        covered[shares[k].particle] += shares[k].fraction;
+        const double f = fraction(shares[k]);
+        weighted[shares[k].particle] += f * g * (above + 0.5 * layer);
+        covered[shares[k].particle] += f;
       }
       above += layer;
       previous_bottom = bottom;
