@@ -366,6 +366,56 @@ TEST(NeighbourGrid, SubsetOfRowsFindsOnlyThoseRows) {
   EXPECT_EQ(found, expected);
 }
 
+// A grid holds cell starts only for the planes along z its points occupy.
+// One grid, rebuilt on a slab high in the box, on one low down, then on
+// points everywhere (closed and periodic z), finds what brute force finds
+// from its points and from queries through the whole box, above and below
+// the slab; its later-neighbour pairs and write blocks cover every pair once.
+TEST(NeighbourGrid, HoldsOnlyThePlanesItsPointsOccupy) {
+  const double radius = 0.08;
+  for (const bool periodic_z : {false, true}) {
+    NeighbourGrid grid;
+    grid.configure(3, {0, 0, 0}, {1, 1, 1}, radius, {false, false, periodic_z});
+    unsigned seed = 40u + periodic_z;
+    for (const auto& [z0, z1] : {std::pair{0.6, 0.7}, std::pair{0.0, 0.1}, std::pair{0.0, 1.0}}) {
+      Cloud c = random_cloud(3, {0, 0, z0}, {1, 1, z1}, {}, false, 500, ++seed);
+      c.lo = {0, 0, 0};
+      c.hi = {1, 1, 1};  // the period along z is the box's
+      c.periodic = {false, false, periodic_z};
+      grid.build(c.pos);
+      auto within = [&](std::size_t, std::size_t) { return radius; };
+      std::vector<Found> got;
+      for (std::size_t i = 0; i < c.pos.size(); ++i)
+        grid.for_each_neighbour(c.pos[i], radius,
+                                [&](Index j, const Vec3& dx, double) { got.push_back(found(i, j, dx)); });
+      std::sort(got.begin(), got.end());
+      EXPECT_EQ(got, brute_force(c, radius, within)) << "slab " << z0 << " .. " << z1;
+      std::vector<Found> later;
+      const auto order = grid.order();
+      for (std::size_t s = 0; s < order.size(); ++s)
+        grid.for_each_later_neighbour(s, radius, [&](Index j, const Vec3& dx, double) {
+          later.push_back(found(order[s], j, dx));
+          later.push_back(found(j, order[s], -dx));
+        });
+      std::sort(later.begin(), later.end());
+      EXPECT_EQ(later, without_self(brute_force(c, radius, within))) << "slab " << z0 << " .. " << z1;
+      for (double qz = -0.05; qz <= 1.05; qz += 0.0437) {  // queries through the box, with no point of their own
+        const Vec3 q{0.31, 0.52, qz};
+        std::vector<Index> want, hits;
+        for (std::size_t j = 0; j < c.pos.size(); ++j) {
+          Vec3 d = q - c.pos[j];
+          if (periodic_z) d.z -= std::round(d.z);  // the nearest image (the reach is far below half the period)
+          if (norm2(d) < radius * radius) want.push_back(static_cast<Index>(j));
+        }
+        grid.for_each_neighbour(q, radius, [&](Index j, const Vec3&, double) { hits.push_back(j); });
+        std::sort(hits.begin(), hits.end());
+        EXPECT_EQ(hits, want) << "query at z = " << qz << ", slab " << z0 << " .. " << z1;
+      }
+      expect_write_blocks_disjoint(c, radius);
+    }
+  }
+}
+
 // Wall particles 1e19 m apart (a fuzzed dp) asked for more cells than a
 // size_t counts: the product wrapped, the grid was too small and build()
 // wrote past it. The grid is coarsened instead, and still finds neighbours.

@@ -23,6 +23,11 @@
 // every image of a point within reach is reported, once, even for a reach
 // longer than the period.
 //
+// A grid of one level holds cell starts only for the planes of cells along
+// z (the outermost axis of the sorted order) that its points occupy, so its
+// memory follows the points (the fluid in the lower part of a tall domain,
+// a tank's walls), not the domain; the cells and the order are the same.
+//
 // Query contract: f(j, dx, r2) for every binned point j and image with
 // r2 = |dx|^2 < reach^2, dx = x - x_j (the image's offset), the point itself
 // included if it was binned. Nothing allocates after the first build at a
@@ -35,6 +40,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -108,9 +114,15 @@ class NeighbourGrid {
     if (n > 0) level_max_[0] = radius_;
     reserve_keys(n);
     const Level& L = level_[0];
-#pragma omp parallel for schedule(static) if (n > 4096)
-    for (std::size_t i = 0; i < n; ++i) set_key(i, static_cast<Index>(L.cell_index(pos[i], lo_, dim_)));
-    sort_into_cells(pos);
+    Index low = std::numeric_limits<Index>::max(), high = 0;
+#pragma omp parallel for schedule(static) reduction(min : low) reduction(max : high) if (n > 4096)
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto k = static_cast<Index>(L.cell_index(pos[i], lo_, dim_));
+      set_key(i, k);
+      low = std::min(low, k);
+      high = std::max(high, k);
+    }
+    sort_into_cells(pos, hold_planes(low, high, n));
   }
 
   // Bins only the listed points pos[rows[q]] (one body's rows of a store
@@ -121,8 +133,14 @@ class NeighbourGrid {
     if (n > 0) level_max_[0] = radius_;
     reserve_keys(n);
     const Level& L = level_[0];
-    for (std::size_t q = 0; q < n; ++q) set_key(q, static_cast<Index>(L.cell_index(pos[rows[q]], lo_, dim_)));
-    sort_into_cells(n, [&](std::size_t q) { return rows[q]; }, pos);
+    Index low = std::numeric_limits<Index>::max(), high = 0;
+    for (std::size_t q = 0; q < n; ++q) {
+      const auto k = static_cast<Index>(L.cell_index(pos[rows[q]], lo_, dim_));
+      set_key(q, k);
+      low = std::min(low, k);
+      high = std::max(high, k);
+    }
+    sort_into_cells(n, [&](std::size_t q) { return rows[q]; }, pos, hold_planes(low, high, n));
   }
 
   // Bins points with their own search radii, each into the level of its radius.
@@ -138,7 +156,8 @@ class NeighbourGrid {
       level_max_[k] = std::max(level_max_[k], radius[i]);
       set_key(i, static_cast<Index>(level_[k].offset + level_[k].cell_index(pos[i], lo_, dim_)));
     }
-    sort_into_cells(pos);
+    hold_all_planes();
+    sort_into_cells(pos, 0);
   }
 
   // The binned points' indices in cell order (level by level).
@@ -214,9 +233,10 @@ class NeighbourGrid {
       hi[a] = static_cast<int>((block[b] + 1) * n / count);
     }
     Index begin = 0, end = 0;
-    for (int cz = lo[2]; cz < hi[2]; ++cz)
+    for (int cz = lo[2]; cz < hi[2]; ++cz) {
+      if (!L.holds_plane(cz)) continue;  // no point there
       for (int cy = lo[1]; cy < hi[1]; ++cy) {
-        const std::size_t row = (static_cast<std::size_t>(cz) * L.n[1] + cy) * L.n[0];
+        const std::size_t row = L.row_index(cz, cy);
         const Index s0 = cell_start_[row + lo[0]], s1 = cell_start_[row + hi[0]];
         if (s0 == s1) continue;
         if (s0 != end) {
@@ -225,6 +245,7 @@ class NeighbourGrid {
         }
         end = s1;
       }
+    }
     if (end > begin) f(std::size_t{begin}, std::size_t{end});
   }
 
@@ -245,6 +266,14 @@ class NeighbourGrid {
     std::size_t offset = 0;  // first cell in cell_start_
     std::array<int, 3> blocks{1, 1, 1};  // blocks of block_cells^dim cells per axis
     std::size_t block_offset = 0;        // first block in block_filled_
+    // The planes of cells along z that cell_start_ holds: [z_first, z_first + z_planes).
+    int z_first = 0, z_planes = 0;
+    std::size_t plane_cells() const { return static_cast<std::size_t>(n[0]) * n[1]; }
+    bool holds_plane(int z) const { return z >= z_first && z < z_first + z_planes; }
+    // Where the cells of row y of held plane z start in cell_start_.
+    std::size_t row_index(int z, int y) const {
+      return offset + (static_cast<std::size_t>(z - z_first) * n[1] + y) * n[0];
+    }
     std::size_t block_index(int bx, int by, int bz) const {
       return block_offset + (static_cast<std::size_t>(bz) * blocks[1] + by) * blocks[0] + bx;
     }
@@ -312,14 +341,41 @@ class NeighbourGrid {
         L.inv[a] = 1.0 / L.cell[a];
       }
       L.offset = total;
+      L.z_first = 0;
+      L.z_planes = 0;  // until a build
       total += static_cast<std::size_t>(L.n[0]) * L.n[1] * L.n[2];
       for (int a = 0; a < 3; ++a) L.blocks[a] = (L.n[a] + block_cells - 1) / block_cells;
       L.block_offset = block_total;
       block_total += static_cast<std::size_t>(L.blocks[0]) * L.blocks[1] * L.blocks[2];
     }
-    cell_start_.assign(total + 1, 0);
+    // Room for every plane, written only where a build holds planes.
+    cell_start_.assign(1, 0);
+    cell_start_.reserve(total + 1);
+    total_cells_ = total;
     block_filled_.assign(block_total, 0);
     lay_out_write_blocks();
+  }
+
+  // Level 0 holds the planes from that of key `low` to that of key `high`
+  // (the points' least and greatest; one plane without points), the other
+  // levels none. Returns the key of the first cell held.
+  Index hold_planes(Index low, Index high, std::size_t n) {
+    Level& L = level_[0];
+    const std::size_t plane = L.plane_cells();
+    L.z_first = n > 0 ? static_cast<int>(low / plane) : 0;
+    L.z_planes = n > 0 ? static_cast<int>(high / plane) - L.z_first + 1 : 1;
+    for (std::size_t k = 1; k < level_.size(); ++k) level_[k].z_planes = 0;
+    cell_start_.resize(plane * L.z_planes + 1);
+    return static_cast<Index>(L.z_first * plane);
+  }
+
+  // Every level holds every plane (the levels' offsets lie them end to end).
+  void hold_all_planes() {
+    for (Level& L : level_) {
+      L.z_first = 0;
+      L.z_planes = L.n[2];
+    }
+    cell_start_.resize(total_cells_ + 1);
   }
 
   // Which blocks of cells hold a point: a query whose reach meets only empty
@@ -327,9 +383,9 @@ class NeighbourGrid {
   void mark_filled_blocks() {
     std::fill(block_filled_.begin(), block_filled_.end(), 0);
     for (const Level& L : level_)
-      for (int cz = 0; cz < L.n[2]; ++cz)
+      for (int cz = L.z_first; cz < L.z_first + L.z_planes; ++cz)
         for (int cy = 0; cy < L.n[1]; ++cy) {
-          const std::size_t row = L.offset + (static_cast<std::size_t>(cz) * L.n[1] + cy) * L.n[0];
+          const std::size_t row = L.row_index(cz, cy);
           for (int cx = 0; cx < L.n[0]; ++cx)
             if (cell_start_[row + cx + 1] > cell_start_[row + cx])
               block_filled_[L.block_index(cx / block_cells, cy / block_cells, cz / block_cells)] = 1;
@@ -358,23 +414,24 @@ class NeighbourGrid {
     return k;
   }
 
-  // Counting sort of the keys into order_, with the coordinates copied alongside.
-  void sort_into_cells(std::span<const Vec3> pos) {
-    sort_into_cells(pos.size(), [](std::size_t i) { return static_cast<Index>(i); }, pos);
+  // Counting sort of the keys into order_, with the coordinates copied
+  // alongside; key k counts in cell_start_[k - first] (the first held cell).
+  void sort_into_cells(std::span<const Vec3> pos, Index first) {
+    sort_into_cells(pos.size(), [](std::size_t i) { return static_cast<Index>(i); }, pos, first);
   }
   // The same for n binned points whose q-th is pos[point(q)].
   template <class Point>
-  void sort_into_cells(std::size_t n, Point point, std::span<const Vec3> pos) {
+  void sort_into_cells(std::size_t n, Point point, std::span<const Vec3> pos, Index first) {
     order_.resize(n);
     xs_.resize(n);
     ys_.resize(n);
     std::fill(cell_start_.begin(), cell_start_.end(), 0);
-    for (std::size_t i = 0; i < n; ++i) ++cell_start_[key(i) + 1];
+    for (std::size_t i = 0; i < n; ++i) ++cell_start_[key(i) - first + 1];
     for (std::size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
     // Each cell's start is its cursor while filling: it ends as the next cell's start, and the
     // starts are shifted back by one afterwards (no second array of cells).
     for (std::size_t i = 0; i < n; ++i) {
-      const Index s = cell_start_[key(i)]++;
+      const Index s = cell_start_[key(i) - first]++;
       const Index j = point(i);
       order_[s] = j;
       xs_[s] = pos[j].x;
@@ -433,9 +490,10 @@ class NeighbourGrid {
     for (int cz = z0; cz <= z1; ++cz) {
       int iz = 0;
       const int rz = wrap(L, cz, 2, iz);
-      const std::size_t plane = L.offset + static_cast<std::size_t>(rz) * L.n[1] * L.n[0];
+      if (!L.holds_plane(rz)) continue;  // no point there
+      const std::size_t plane = L.row_index(rz, 0);
       // A later-neighbour query skips the rows that end before `first` (about half of them).
-      if (cell_start_[plane + static_cast<std::size_t>(L.n[1]) * L.n[0]] <= first) continue;
+      if (cell_start_[plane + L.plane_cells()] <= first) continue;
       for (int cy = y0; cy <= y1; ++cy) {
         int iy = 0;
         const int ry = wrap(L, cy, 1, iy);
@@ -565,7 +623,8 @@ class NeighbourGrid {
   bool any_periodic_ = false;
   std::vector<Level> level_;
   std::vector<double> level_max_;  // largest search radius binned per level; 0: empty
-  std::vector<Index> cell_start_, order_;
+  std::vector<Index> cell_start_, order_;  // cell_start_: the held planes' cells, then their end
+  std::size_t total_cells_ = 0;              // every level's cells
   std::vector<std::uint8_t> block_filled_;  // per block of cells: 1 if it holds a point
   std::vector<double> xs_, ys_, zs_;  // the points' coordinates in order_ (zs_: their keys while sorting)
   std::array<int, 2> write_axis_{2, 1};          // the axes the write blocks divide, outermost first
