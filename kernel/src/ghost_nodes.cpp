@@ -21,21 +21,21 @@ struct MomentSums {
   Matrix4 rhs = Matrix4::Zero();  // columns: sum V_j p_j t_r, then sum V_j v_j[k] t_r
 };
 
+// NB: the fluid's NeighbourFields, in double or float; the sums in double.
+template <class NB>
 struct MomentTerm {
   static constexpr bool uses_value = true, uses_gradient = true;
-  const Vec3* velocity = nullptr;
-  const double* pressure = nullptr;
-  const double* mass = nullptr;
-  const double* inv_density = nullptr;
+  NB fluid;
   template <class S>
   void pair(const Pair& q, S& s) const {
-    const double vol = mass[q.j] * inv_density[q.j];
+    const double vol = static_cast<double>(fluid.mass[q.j]) * fluid.inv_density[q.j];
     const Vec3 g = q.grad();
     const Eigen::Vector4d t{q.w, g.x, g.y, g.z};
     const Eigen::Vector4d u{1.0, -q.dx.x, -q.dx.y, -q.dx.z};  // dx = x_g - x_j
-    const Vec3& v = velocity[q.j];
+    const Vec3 v = fluid.velocity[q.j];
+    const double pressure = fluid.pressure[q.j];
     s.a.noalias() += (vol * t) * u.transpose();
-    s.rhs.col(0) += (vol * pressure[q.j]) * t;
+    s.rhs.col(0) += (vol * pressure) * t;
     s.rhs.col(1) += (vol * v.x) * t;
     s.rhs.col(2) += (vol * v.y) * t;
     s.rhs.col(3) += (vol * v.z) * t;
@@ -51,7 +51,8 @@ std::uint64_t extrapolate_from_ghost_nodes(int dim, const GhostNodes& nodes, con
   if (nodes.ghost.size() != n || nodes.velocity.size() != n || pressure.size() != n ||
       !(viscous_velocity.empty() || viscous_velocity.size() == n))
     throw RunError("extrapolate_from_ghost_nodes: the wall spans differ in length");
-  if (fluid.inv_density.size() != fluid.mass.size()) throw RunError("extrapolate_from_ghost_nodes: no 1/rho of the fluid");
+  if (fluid.in_single() ? !fluid.single.inv_density : fluid.inv_density.size() != fluid.mass.size())
+    throw RunError("extrapolate_from_ghost_nodes: no 1/rho of the fluid");
   const int size = dim + 1;  // unknowns: the value and its gradient in the domain's axes
   const bool velocity_wanted = !viscous_velocity.empty();
 
@@ -82,8 +83,9 @@ std::uint64_t extrapolate_from_ghost_nodes(int dim, const GhostNodes& nodes, con
       viscous_velocity[b] = ghost_v + normal * (2.0 * dot(wall_v - ghost_v, normal));
     }
   };
-  return pair_pass(n, nodes.ghost, *fluid.cells, kernel, other_set, start, finish,
-                   MomentTerm{fluid.velocity.data(), fluid.pressure.data(), fluid.mass.data(), fluid.inv_density.data()});
+  return fluid.visit_neighbours([&](const auto& fields) {
+    return pair_pass(n, nodes.ghost, *fluid.cells, kernel, other_set, start, finish, MomentTerm{fields});
+  });
 }
 
 }  // namespace talus::sph

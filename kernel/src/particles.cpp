@@ -160,6 +160,20 @@ void* ParticleStore::column_data(std::string_view name, FieldType type) {
   return const_cast<void*>(std::as_const(*this).column_data(name, type));
 }
 
+std::span<const double> ParticleStore::scalar_in_double(std::string_view name, std::vector<double>& scratch) const {
+  if (info(name).type != FieldType::scalar_f32) return scalar(name);
+  const auto values = scalar_f32(name);
+  scratch.assign(values.begin(), values.end());
+  return scratch;
+}
+
+std::span<const Vec3> ParticleStore::vector_in_double(std::string_view name, std::vector<Vec3>& scratch) const {
+  if (info(name).type != FieldType::vector_f32) return vector(name);
+  const auto values = vector_f32(name);
+  scratch.assign(values.begin(), values.end());
+  return scratch;
+}
+
 std::size_t ParticleStore::element_bytes(FieldType type) {
   switch (type) {
     case FieldType::scalar: return sizeof(double);

@@ -77,9 +77,9 @@ class TALUS_API Simulation {
   void build_kernel();
   void check_periodic_axes() const;
   void build_bodies();                                   // the body records
-  void fill_bodies(const std::vector<std::string>& fields);  // their particles, with these start fields
+  void fill_bodies(const std::vector<FieldInfo>& fields);  // their particles, with these start fields
   void build_stages();
-  std::vector<std::string> check_stage_parts() const;  // the pipeline against the stages' StageParts
+  std::vector<FieldInfo> check_stage_parts() const;  // the pipeline against the stages' StageParts
   void build_writers();
   void remove_escaped_particles();
   std::size_t flag_escaped_particles();  // wraps periodic axes; returns how many owned particles left the domain

@@ -211,11 +211,11 @@ const FieldInfo kBodyFields[] = {{"velocity", FieldType::vector, "m/s", true, tr
                                  {"mass", FieldType::scalar, "kg", true, true}};
 }  // namespace
 
-void Simulation::fill_bodies(const std::vector<std::string>& fields) {
+void Simulation::fill_bodies(const std::vector<FieldInfo>& fields) {
   const auto& bodies = scene_.values.objects("bodies");
   ParticleStore& fluid = world_.fluid;
-  for (const FieldInfo& f : kBodyFields)
-    if (std::ranges::find(fields, f.name) != fields.end()) fluid.require(f);
+  for (const FieldInfo& known : kBodyFields)  // in this order, whatever the stages' order
+    if (const auto f = std::ranges::find(fields, known.name, &FieldInfo::name); f != fields.end()) fluid.require(*f);
   const bool velocity = fluid.has("velocity"), density = fluid.has("density"), pressure = fluid.has("pressure"),
              mass = fluid.has("mass");
 
@@ -302,8 +302,9 @@ void Simulation::build_stages() {
 }
 
 // Every part a stage needs is built by a stage before it, and no part twice;
-// returns the body fields the stages read.
-std::vector<std::string> Simulation::check_stage_parts() const {
+// returns the body fields the stages read, each allowed in float (mixed
+// precision) where every stage that reads it allows that.
+std::vector<FieldInfo> Simulation::check_stage_parts() const {
   const auto& entries = scene_.values.objects("pipeline");
   std::vector<StageParts> parts;
   for (const auto& stage : stages_) parts.push_back(stage->parts(world_));
@@ -327,13 +328,21 @@ std::vector<std::string> Simulation::check_stage_parts() const {
         entries[i].fail("", "stage '" + stage_names_[i] + "' builds the " + part + " that " + where(earlier) +
                                 " already builds; list only one of them");
   }
-  std::vector<std::string> fields;
+  std::vector<FieldInfo> fields;
   for (std::size_t i = 0; i < stages_.size(); ++i)
     for (const std::string& name : parts[i].body_fields) {
-      if (std::ranges::none_of(kBodyFields, [&](const FieldInfo& f) { return f.name == name; }))
+      const auto known = std::ranges::find(kBodyFields, name, &FieldInfo::name);
+      if (known == std::end(kBodyFields))
         entries[i].fail("", "stage '" + stage_names_[i] + "' reads the start state of the body field '" + name +
                                 "', which bodies do not give; they give velocity, density, pressure and mass");
-      if (std::ranges::find(fields, name) == fields.end()) fields.push_back(name);
+      const bool single = std::ranges::find(parts[i].single_body_fields, name) != parts[i].single_body_fields.end();
+      auto listed = std::ranges::find(fields, name, &FieldInfo::name);
+      if (listed == fields.end()) {
+        fields.push_back(*known);
+        fields.back().single_when_mixed = single;
+      } else {
+        listed->single_when_mixed = listed->single_when_mixed && single;
+      }
     }
   return fields;
 }

@@ -535,8 +535,10 @@ double ProbesWriter::integral(Quantity q, const World& world) const {
   const ParticleStore& s = world.fluid;
   const std::size_t n = s.owned_size();
   const bool has_mass = s.has("mass");
-  const auto mass = has_mass ? s.scalar("mass") : std::span<const double>{};
-  const auto vel = s.has("velocity") ? s.vector("velocity") : std::span<const Vec3>{};
+  std::vector<double> mass_wide;  // in double, where the store keeps it in float
+  std::vector<Vec3> velocity_wide;
+  const auto mass = has_mass ? s.scalar_in_double("mass", mass_wide) : std::span<const double>{};
+  const auto vel = s.has("velocity") ? s.vector_in_double("velocity", velocity_wide) : std::span<const Vec3>{};
   const auto pos = s.position();
   double sum = 0.0;
   switch (q) {
@@ -595,16 +597,16 @@ Vec3 ProbesWriter::wall_force(int body, const World& world, const SphSampler& fl
   return {fx, fy, fz};
 }
 
-ProbesWriter::ForceFields::ForceFields(const World& world)
-    : xa(world.boundary.position()),
-      ma(world.boundary.scalar("mass")),
-      rhoa(world.boundary.scalar("density")),
-      pa(world.boundary.scalar("pressure")) {
-  const auto rho = world.fluid.scalar("density");
+ProbesWriter::ForceFields::ForceFields(const World& world) : xa(world.boundary.position()) {
+  ma = world.boundary.scalar_in_double("mass", wall_mass_wide);
+  rhoa = world.boundary.scalar_in_double("density", wall_density_wide);
+  pa = world.boundary.scalar_in_double("pressure", wall_pressure_wide);
+  std::vector<double> rho_wide;
+  const auto rho = world.fluid.scalar_in_double("density", rho_wide);
   inv_rho.resize(rho.size());
   for (std::size_t j = 0; j < rho.size(); ++j) inv_rho[j] = 1.0 / rho[j];
-  fluid.mass = world.fluid.scalar("mass").data();
-  fluid.pressure = world.fluid.scalar("pressure").data();
+  fluid.mass = world.fluid.scalar_in_double("mass", mass_wide).data();
+  fluid.pressure = world.fluid.scalar_in_double("pressure", pressure_wide).data();
   fluid.inv_density = inv_rho.data();
 }
 
@@ -704,8 +706,8 @@ void ProbesWriter::write(const World& world) {
     const std::size_t n = fluid.size();
     volume_.resize(n);
     if (fluid.has("mass") && fluid.has("density")) {
-      const auto m = fluid.scalar("mass");
-      const auto rho = fluid.scalar("density");
+      const auto m = fluid.scalar_in_double("mass", wide_);
+      const auto rho = fluid.scalar_in_double("density", wide_other_);
 #pragma omp parallel for
       for (std::size_t i = 0; i < n; ++i) volume_[i] = m[i] / rho[i];
     } else {
@@ -736,11 +738,11 @@ void ProbesWriter::write(const World& world) {
     for (; c < point_columns_.size() && point_columns_[c].point == p; ++c) {
       const auto& col = point_columns_[c];
       if (!col.vector) {
-        const auto f = fluid.scalar(col.field);
+        const auto f = fluid.scalar_in_double(col.field, wide_);
         weighted([&](Index j) { return f[j]; });
         continue;
       }
-      const auto v = fluid.vector(col.field);
+      const auto v = fluid.vector_in_double(col.field, wide_vectors_);
       for (int k = col.component < 3 ? col.component : 0; k < (col.component < 3 ? col.component + 1 : world.dim); ++k)
         weighted([&](Index j) { return v[j][k]; });
     }
@@ -755,7 +757,7 @@ void ProbesWriter::write(const World& world) {
   if (material_masses_) {  // summed in particle id order: the re-sort does not change the sum's rounding
     const std::size_t at = shares_.size();
     shares_.resize(at + world.materials.size(), 0.0);
-    const auto m = fluid.scalar("mass");
+    const auto m = fluid.scalar_in_double("mass", wide_);
     const auto material = fluid.integer("material");
     const auto id = fluid.ids();
     std::vector<Index> by_id(owned);
@@ -884,7 +886,7 @@ void ProbesWriter::put_air_below(const World& world) {
 // largest over the ranks.
 void ProbesWriter::put_surface_speed(const World& world) {
   if (!waves_) return;
-  const auto velocity = world.fluid.vector("velocity");
+  const auto velocity = world.fluid.vector_in_double("velocity", wide_vectors_);
   const Vec3& along = waves_->direction();
   for (const auto& g : gauges_) {
     if (!g.air) continue;

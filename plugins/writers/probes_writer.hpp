@@ -101,6 +101,8 @@ class ProbesWriter final : public Writer {
     std::span<const Vec3> xa;
     std::span<const double> ma, rhoa, pa;
     std::vector<double> inv_rho;  // 1/rho of the fluid particles
+    // In double, where the stores keep them in float (mixed precision).
+    std::vector<double> mass_wide, pressure_wide, wall_mass_wide, wall_density_wide, wall_pressure_wide;
     sph::Neighbours fluid;        // the fluid as the solver's pressure term reads it
   };
   // The pressure force of the fluid (bound to `fluid`) on wall particle a.
@@ -149,6 +151,9 @@ class ProbesWriter final : public Writer {
   SphSampler sampler_;        // the fluid particles this rank owns: each counted once over the ranks
   SphSampler force_sampler_;  // on several ranks, with the halo: a wall particle's fluid neighbours
   std::vector<double> volume_;
+  // Fields the store keeps in float (mixed precision), widened to double for one frame.
+  std::vector<double> wide_, wide_other_;
+  std::vector<Vec3> wide_vectors_;
   std::vector<double> shares_;  // this rank's share of every sum in a row, then the sums over the ranks
   bool writes_file_ = true;     // rank 0
   std::vector<Neighbour> neighbours_;

@@ -38,8 +38,13 @@ struct SphWorld {
   std::unique_ptr<talus::SmoothingKernel> kernel_model;
   std::unique_ptr<talus::wcsph::WcsphStage> stage;
 
+  // The stores' precision: in mixed precision the body fields may be kept in
+  // float, as the host does where the stages allow it (StageParts).
+  enum class Precision { double_only, mixed };
+
   // dim, domain, kernel ("wendland_c2" or "cubic_spline"), h/dp, dp, gravity.
-  SphWorld(int dim, Vec3 lo, Vec3 hi, double dp, double h_over_dp = 1.3, const std::string& kernel = "wendland_c2") {
+  SphWorld(int dim, Vec3 lo, Vec3 hi, double dp, double h_over_dp = 1.3, const std::string& kernel = "wendland_c2",
+           Precision precision = Precision::double_only) {
     world.dim = dim;
     world.lo = lo;
     world.hi = hi;
@@ -53,10 +58,13 @@ struct SphWorld {
       kernel_model = std::make_unique<talus::kernels::WendlandC2>(none);
     world.kernel = talus::KernelTable(*kernel_model, dim, world.h);
     auto& f = world.fluid;
-    f.require({"velocity", talus::FieldType::vector, "m/s", true, true});
-    f.require({"density", talus::FieldType::scalar, "kg/m^3", true, true});
-    f.require({"pressure", talus::FieldType::scalar, "Pa", true, true});
-    f.require({"mass", talus::FieldType::scalar, "kg", true, true});
+    const bool single = precision == Precision::mixed;
+    f.set_mixed_precision(single);
+    world.boundary.set_mixed_precision(single);
+    f.require({"velocity", talus::FieldType::vector, "m/s", true, true, single});
+    f.require({"density", talus::FieldType::scalar, "kg/m^3", true, true, single});
+    f.require({"pressure", talus::FieldType::scalar, "Pa", true, true, single});
+    f.require({"mass", talus::FieldType::scalar, "kg", true, true, single});
   }
 
   // A Tait material; returns its index.
@@ -97,22 +105,28 @@ struct SphWorld {
     for (const auto& p : pts) top = std::max(top, talus::dot(p, up));
     top += 0.5 * world.dp;
     auto x = f.position();
-    auto v = f.vector("velocity");
-    auto rho = f.scalar("density");
-    auto p = f.scalar("pressure");
-    auto mass = f.scalar("mass");
     auto mat = f.material();
     auto bid = f.body();
+    const double particle_mass =
+        m.density * talus::lattice_volume("box", shape.alternative_values("shape"), world.dp, d);
     for (std::size_t k = 0; k < pts.size(); ++k) {
       const std::size_t i = first + k;
       x[i] = pts[k];
-      v[i] = velocity;
-      mass[i] = m.density * talus::lattice_volume("box", shape.alternative_values("shape"), world.dp, d);
       mat[i] = material;
       bid[i] = bi;
-      p[i] = hydrostatic ? m.density * g * (top - talus::dot(pts[k], up)) : 0.0;
-      rho[i] = hydrostatic ? m.eos->density_at(p[i]) : m.density;
     }
+    // Each field in the type it is kept in (float in mixed precision).
+    f.visit_vector("velocity", [&](auto v) { std::fill(v.begin() + first, v.end(), velocity); });
+    f.visit_scalar("mass", [&](auto mass) { std::fill(mass.begin() + first, mass.end(), particle_mass); });
+    f.visit_scalar("pressure", [&](auto p) {
+      f.visit_scalar("density", [&](auto rho) {
+        for (std::size_t k = 0; k < pts.size(); ++k) {
+          const double pk = hydrostatic ? m.density * g * (top - talus::dot(pts[k], up)) : 0.0;
+          p[first + k] = pk;
+          rho[first + k] = hydrostatic ? m.eos->density_at(pk) : m.density;
+        }
+      });
+    });
     world.refresh_material_index();
   }
 

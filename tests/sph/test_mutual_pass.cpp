@@ -88,6 +88,7 @@ struct Rates {
   std::vector<Vec3> acc;
   std::vector<double> drho;
   double visc_max = 0.0;  // the largest |v_ij . x_ij|/(r^2 + eta^2) of the rows' pairs
+  sph::FluidReactions<> out() { return {acc.data(), drho.data()}; }
 };
 
 Rates zero_rates(std::size_t n, double fill = 0.0) {
@@ -132,7 +133,7 @@ Rates mutual(const Cloud& c, const NeighbourGrid& grid, const KernelTable& kerne
              std::size_t owned = SIZE_MAX, std::uint64_t* pairs = nullptr) {
   Rates r = zero_rates(c.x.size(), 9.0);  // not zero: the pass must clear its output
   auto start = [&](Index i) { return start_of(c, i); };
-  const sph::MutualPassResult result = sph::mutual_pair_pass(grid, kernel, {r.acc.data(), r.drho.data()},
+  const sph::MutualPassResult result = sph::mutual_pair_pass(grid, kernel, r.out(),
                                                              std::min(owned, c.x.size()), start, [](Index) {}, term);
   r.visc_max = result.visc_max;
   if (pairs) *pairs = result.evaluations;
@@ -259,12 +260,12 @@ TEST_P(MutualPass, CountsEveryPairFromBothSidesAndRepeatsBitForBit) {
   Rates a, b;
   {
     Rates r = zero_rates(cloud.x.size());
-    const auto one = sph::mutual_pair_pass(grid, kernel, {r.acc.data(), r.drho.data()}, cloud.x.size(), start,
+    const auto one = sph::mutual_pair_pass(grid, kernel, r.out(), cloud.x.size(), start,
                                            [](Index) {}, pressure, viscosity, continuity);
     first = one.evaluations;
     a = r;
     a.visc_max = one.visc_max;
-    const auto two = sph::mutual_pair_pass(grid, kernel, {r.acc.data(), r.drho.data()}, cloud.x.size(), start,
+    const auto two = sph::mutual_pair_pass(grid, kernel, r.out(), cloud.x.size(), start,
                                            [](Index) {}, pressure, viscosity, continuity);
     second = two.evaluations;
     b = r;
@@ -290,7 +291,7 @@ TEST_P(MutualPass, SameBitsOnOneAndTwoThreads) {
   auto on_threads = [&](int threads) {
     omp_set_num_threads(threads);
     Rates r = zero_rates(cloud.x.size());
-    r.visc_max = sph::mutual_pair_pass(grid, kernel, {r.acc.data(), r.drho.data()}, cloud.x.size(), start,
+    r.visc_max = sph::mutual_pair_pass(grid, kernel, r.out(), cloud.x.size(), start,
                                        [](Index) {}, pressure, viscosity, diffusion)
                      .visc_max;
     return r;
@@ -340,11 +341,11 @@ TEST(MutualPassGrid, RefusesAGridWithPointsBeyondItsFirstLevel) {
   grid.build(c.x, radius);
   Rates r = zero_rates(c.x.size());
   auto start = [&](Index i) { return start_of(c, i); };
-  EXPECT_THROW(sph::mutual_pair_pass(grid, kernel, {r.acc.data(), r.drho.data()}, c.x.size(), start, [](Index) {},
+  EXPECT_THROW(sph::mutual_pair_pass(grid, kernel, r.out(), c.x.size(), start, [](Index) {},
                                      sph::PressureForce{c.nb()}),
                RunError);
   grid.build(c.x);
-  EXPECT_GT(sph::mutual_pair_pass(grid, kernel, {r.acc.data(), r.drho.data()}, c.x.size(), start, [](Index) {},
+  EXPECT_GT(sph::mutual_pair_pass(grid, kernel, r.out(), c.x.size(), start, [](Index) {},
                                   sph::PressureForce{c.nb()})
                 .evaluations,
             0u);

@@ -66,6 +66,7 @@ constexpr auto abi_layout() {
       // SPH boundary passes (the wcsph stage calls boundary plugins with these).
       TALUS_ABI_SIZE_(FluidSettings), TALUS_ABI_SIZE_(FluidView), TALUS_ABI_AT_(FluidView, position),
       TALUS_ABI_AT_(FluidView, density), TALUS_ABI_AT_(FluidView, viscosity), TALUS_ABI_AT_(FluidView, inv_density),
+      TALUS_ABI_AT_(FluidView, single),
       TALUS_ABI_SIZE_(FluidRates), TALUS_ABI_AT_(FluidRates, acceleration), TALUS_ABI_AT_(FluidRates, density_rate),
       TALUS_ABI_AT_(FluidRates, visc_max), TALUS_ABI_SIZE_(Neighbours), TALUS_ABI_AT_(Neighbours, viscosity),
       // Small value types.

@@ -129,6 +129,11 @@ class TALUS_API ParticleStore {
     else
       f(column<Vec3>(name));
   }
+  // A scalar or vector field's values in double whatever its stored type:
+  // the column itself, or its values widened into `scratch` (for code that
+  // reads a field at an output, such as a writer; a pass reads the stored type).
+  std::span<const double> scalar_in_double(std::string_view name, std::vector<double>& scratch) const;
+  std::span<const Vec3> vector_in_double(std::string_view name, std::vector<Vec3>& scratch) const;
   // Any field as raw bytes, element_bytes(type) per particle: for code that
   // moves whole particles without knowing their fields (checkpoints, ranks).
   std::span<std::byte> bytes(std::string_view name);

@@ -36,6 +36,9 @@ struct StageParts {
   std::vector<std::string> provides;
   std::vector<std::string> needs;
   std::vector<std::string> body_fields;
+  // Those of body_fields the stage reads in float in a scene of mixed
+  // precision: the host fills them in float where every stage allows it.
+  std::vector<std::string> single_body_fields;
 };
 
 class TALUS_API Stage : public Model {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <type_traits>
 
 namespace talus {
 
@@ -47,5 +48,9 @@ struct Vec3f {
 };
 
 inline bool is_finite(const Vec3f& a) { return is_finite(Vec3(a)); }
+
+// The type a vector field of Real (double or float) components is stored in.
+template <class Real>
+using VectorOf = std::conditional_t<std::is_same_v<Real, float>, Vec3f, Vec3>;
 
 }  // namespace talus

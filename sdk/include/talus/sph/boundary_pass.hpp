@@ -71,11 +71,22 @@ struct FluidView {
   // three-pass non-Newtonian / turbulent viscosity; empty otherwise.
   std::span<const double> viscosity;
   std::span<const double> inv_density;  // 1/rho per fluid particle
+  // In a scene of mixed precision whose wall models all read a fluid in float
+  // (SphBoundary::reads_single_fluid), the stage keeps velocity, density,
+  // pressure, sound speed, mass and 1/rho in float: then `single` points at
+  // them (material and viscosity too) and the spans of those six are empty.
+  NeighboursF single;
 
-  // The fluid as the neighbour set of a wall-side pass.
+  bool in_single() const { return single.density != nullptr; }
+  // The fluid as the neighbour set of a wall-side pass, in double.
   Neighbours neighbours() const {
     return {velocity.data(), density.data(),     pressure.data(), sound_speed.data(), mass.data(),
             material.data(), inv_density.data(), viscosity.data()};
+  }
+  // f(fields) with the fluid's NeighbourFields in the type they are kept in.
+  template <class F>
+  decltype(auto) visit_neighbours(F&& f) const {
+    return in_single() ? f(single) : f(neighbours());
   }
 };
 
@@ -87,6 +98,10 @@ struct FluidRates {
   // bound: one value for the whole fluid, raised, never lowered (a pass on
   // several threads takes its own maximum first).
   double* visc_max = nullptr;
+  // Where the fluid is in float (FluidView::in_single) its rates are too:
+  // then these hold them and the two spans above are empty.
+  std::span<Vec3f> acceleration_single;
+  std::span<float> density_rate_single;
 };
 
 // A rigid body a wall set belongs to: the fluid's reaction on it is summed
@@ -111,6 +126,17 @@ struct WallSet {
   const Vec3* viscous_velocity = nullptr;
   bool rigid_body = false;  // then `body` holds and the stage sums the reaction
   RigidBodyFrame body;
+  // A model that keeps its wall particles in float (a scene of mixed
+  // precision) gives their fields here, and `fields` stays empty.
+  NeighboursF single_fields;
+  const Vec3f* viscous_velocity_single = nullptr;
+
+  bool in_single() const { return single_fields.density != nullptr; }
+  // f(fields, viscous velocity) in the type the model keeps them in.
+  template <class F>
+  decltype(auto) visit_fields(F&& f) const {
+    return in_single() ? f(single_fields, viscous_velocity_single) : f(fields, viscous_velocity);
+  }
 };
 
 class TALUS_API SphBoundary : public Boundary {
@@ -148,6 +174,10 @@ class TALUS_API SphBoundary : public Boundary {
   virtual double stable_time_step(const World& /*world*/) const { return std::numeric_limits<double>::infinity(); }
   // What `talus plan` lists for this model's own passes.
   virtual void describe_passes(StagePlan& plan) const = 0;
+  // Whether the model works with a FluidView in float (FluidView::single). In
+  // a scene of mixed precision the stage keeps the fluid in double unless
+  // every wall model says so.
+  virtual bool reads_single_fluid() const { return false; }
 };
 
 }  // namespace talus::sph

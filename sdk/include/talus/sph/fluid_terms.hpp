@@ -3,7 +3,8 @@
 // once and used by the fluid-fluid pass of the wcsph stage and by the
 // fluid-wall passes over the wall sets of boundary models. i is the particle
 // summing, j its neighbour; dx = x_i - x_j, grad = grad_i W_ij. Each term
-// reads the neighbour's fields through a Neighbours view and the i-state from
+// reads the neighbour's fields through a NeighbourFields view (NB: in double,
+// or in float in mixed precision; the arithmetic is double) and the i-state from
 // the pass's Sums (duck-typed members: v, m, rho, inv_rho, p, c, mu, kh, mat;
 // the sums acc, drho, visc). The terms of the fluid-fluid pass also have the
 // mutual form of sph/mutual_pass.hpp: one evaluation per pair, j's share
@@ -21,23 +22,29 @@
 
 namespace talus::sph {
 
-// Raw pointers to the neighbour set's fields (set B of a pass).
-struct Neighbours {
-  const Vec3* velocity = nullptr;
-  const double* density = nullptr;
-  const double* pressure = nullptr;
-  const double* sound_speed = nullptr;
-  const double* mass = nullptr;
+// Raw pointers to the neighbour set's fields (set B of a pass), in the type
+// the store keeps them in: double, or float in a scene of mixed precision
+// (then the terms read float and compute in double).
+template <class Real>
+struct NeighbourFields {
+  const VectorOf<Real>* velocity = nullptr;
+  const Real* density = nullptr;
+  const Real* pressure = nullptr;
+  const Real* sound_speed = nullptr;
+  const Real* mass = nullptr;
   const std::int32_t* material = nullptr;
-  const double* inv_density = nullptr;  // 1/rho, refreshed with the density (saves divisions per pair)
+  const Real* inv_density = nullptr;    // 1/rho, refreshed with the density (saves divisions per pair)
   const double* viscosity = nullptr;    // mu_eff per particle, Pa s (non-Newtonian / turbulent passes only)
 };
+using Neighbours = NeighbourFields<double>;
+using NeighboursF = NeighbourFields<float>;
 
 // Symmetric pressure force, momentum conserving (Monaghan 2005 eq. 3.6; rock-
 // fluid seed eq. 14 in this form):  a_i += -sum_j m_j (p_i + p_j)/(rho_i rho_j) grad.
+template <class NB = Neighbours>
 struct PressureForce {
   static constexpr bool uses_value = false, uses_gradient = true;
-  Neighbours nb;
+  NB nb;
   template <class S>
   TALUS_PAIR_INLINE void pair(const Pair& q, S& s) const {
     const std::size_t j = q.j;
@@ -57,9 +64,10 @@ struct PressureForce {
 // Monaghan (1992) artificial viscosity, as in DualSPHysics:
 //   Pi_ij = -alpha cbar_ij mu_ij / rhobar_ij  when v_ij . x_ij < 0,
 //   mu_ij = h v_ij.x_ij / (r^2 + eta^2),  a_i += -sum_j m_j Pi_ij grad.
+template <class NB = Neighbours>
 struct ArtificialViscosity {
   static constexpr bool uses_value = false, uses_gradient = true;
-  Neighbours nb;
+  NB nb;
   double alpha_h = 0.0;  // alpha * h
   template <class S>
   TALUS_PAIR_INLINE void pair(const Pair& q, S& s) const {
@@ -100,10 +108,10 @@ TALUS_PAIR_INLINE double laminar_weight(const Pair& q, double eta2) { return q.r
 //   a_i += sum_j m_j (mu_i + mu_j)/(rho_i rho_j) (x_ij . grad)/(r^2 + eta^2) v_ij.
 // `mu_of_material` gives mu_j by material; against walls (WallSide = true) the
 // wall takes the fluid's viscosity, mu_j = mu_i (no-slip). eta2: laminar_eta2(h).
-template <bool WallSide = false>
+template <bool WallSide = false, class NB = Neighbours>
 struct LaminarViscosity {
   static constexpr bool uses_value = false, uses_gradient = true;
-  Neighbours nb;
+  NB nb;
   const double* mu_of_material = nullptr;
   double eta2 = 0.0;
   template <class S>
@@ -141,10 +149,10 @@ enum class ViscosityMean { arithmetic, harmonic };
 // Laminar viscosity of the three-pass non-Newtonian scheme (DESIGN.md): the
 // Morris/Lo-Shao operator of LaminarViscosity with the per-particle apparent
 // viscosity mu_eff (pass 2) of both particles; Sums carry mu = mu_eff[i].
-template <ViscosityMean Mean>
+template <ViscosityMean Mean, class NB = Neighbours>
 struct LaminarViscosityField {
   static constexpr bool uses_value = false, uses_gradient = true;
-  Neighbours nb;  // nb.viscosity = mu_eff
+  NB nb;  // nb.viscosity = mu_eff
   double eta2 = 0.0;  // laminar_eta2(h)
   template <class S>
   TALUS_PAIR_INLINE double pair_viscosity(const Pair& q, const S& s) const {
@@ -183,13 +191,14 @@ struct LaminarViscosityField {
 //   grad v = G L^-1   (exact for linear velocity fields, also in a truncated
 //   support such as next to a wall without wall particles), V_j = m_j / rho_j.
 // Sums carry `v` (v_i), `g[3][3]` and `l[3][3]`.
+template <class NB = Neighbours>
 struct VelocityGradient {
   static constexpr bool uses_value = false, uses_gradient = true;
-  Neighbours nb;
+  NB nb;
   template <class S>
   TALUS_PAIR_INLINE void pair(const Pair& q, S& s) const {
     const std::size_t j = q.j;
-    const double vol = nb.mass[j] * nb.inv_density[j];
+    const double vol = static_cast<double>(nb.mass[j]) * nb.inv_density[j];  // in double when the fields are float
     const Vec3 dv = (nb.velocity[j] - s.v) * vol;
     const Vec3 dxj = q.dx * (-vol);  // V_j (x_j - x_i)
     const Vec3 gw = q.grad();
@@ -252,9 +261,10 @@ inline double shear_rate_from_gradient(const double g[3][3], const double l[3][3
 // Viscous force with the Müller viscosity-kernel Laplacian (rock-fluid seed
 // eq. 18): a_i += mu_i/rho_i sum_j m_j (v_j - v_i)/rho_j lap W_ij.
 // Needs a kernel with a Laplacian (the Müller set); the table's laplacian().
+template <class NB = Neighbours>
 struct LaplacianViscosity {
   static constexpr bool uses_value = false, uses_gradient = false;
-  Neighbours nb;
+  NB nb;
   const KernelTable* kernel = nullptr;
   const double* mu_of_material = nullptr;  // mu_j of a fluid neighbour (the mutual form)
   template <class S>
@@ -279,9 +289,10 @@ struct LaplacianViscosity {
 // With one density it equals Monaghan's sum_j m_j v_ij . grad to O(rho_i/rho_j - 1);
 // at a water-sediment interface (1029 against 1922 kg/m^3) that form is wrong by
 // the density ratio and the interface particles blow up. Sums carry `rho`.
+template <class NB = Neighbours>
 struct Continuity {
   static constexpr bool uses_value = false, uses_gradient = true;
-  Neighbours nb;  // needs inv_density
+  NB nb;  // needs inv_density
   template <class S>
   TALUS_PAIR_INLINE void pair(const Pair& q, S& s) const {
     const std::size_t j = q.j;
@@ -307,10 +318,10 @@ struct Continuity {
 // Only pairs of one material diffuse (Mokos et al. 2015, Comput. Part. Mech. 2,
 // multiphase DualSPHysics): across an interface the density difference is the
 // materials', not noise. Sums carry `mat`.
-template <bool Hydrostatic>
+template <bool Hydrostatic, class NB = Neighbours>
 struct DensityDiffusion {
   static constexpr bool uses_value = false, uses_gradient = true;
-  Neighbours nb;
+  NB nb;
   double delta_h_c0 = 0.0;  // delta * h * c0
   Vec3 gravity;
   // delta h c0 2 (rho_i - rho_j - hydrostatic part) (x_ij . grad)/(r^2 + eta^2).
@@ -343,9 +354,10 @@ struct DensityDiffusion {
 
 // Summation density (rock-fluid seed eq. 12): rho_i = sum_j m_j W_ij; the
 // pass's Sums carry `rho_sum`.
+template <class Real = double>
 struct DensitySum {
   static constexpr bool uses_value = true, uses_gradient = false;
-  const double* mass = nullptr;
+  const Real* mass = nullptr;
   template <class S>
   TALUS_PAIR_INLINE void pair(const Pair& q, S& s) const {
     s.rho_sum += mass[q.j] * q.w;
@@ -364,10 +376,11 @@ struct DensitySums {
 struct ExtrapolationSums {
   double wsum = 0.0, psum = 0.0;
 };
+template <class Real = double>
 struct PressureExtrapolation {
   static constexpr bool uses_value = true, uses_gradient = false;
-  const double* p;
-  const double* rho;
+  const Real* p;
+  const Real* rho;
   Vec3 g;
   TALUS_PAIR_INLINE void pair(const Pair& q, ExtrapolationSums& s) const {
     // dx = x_i - x_j = x_b - x_f: the hydrostatic step from fluid particle f to wall particle b.

@@ -41,17 +41,19 @@ struct PairReaction {
   double drho = 0.0;
 };
 
-// Per-particle accumulators of a force pass: acceleration and density rate.
+// Per-particle accumulators of a force pass: acceleration and density rate,
+// in double or (mixed precision) in float; what is added is in double.
+template <class Real = double>
 struct FluidReactions {
-  Vec3* acc = nullptr;
-  double* drho = nullptr;
+  VectorOf<Real>* acc = nullptr;
+  Real* drho = nullptr;
   TALUS_PAIR_INLINE void add(Index k, const Vec3& a, double d) const {
-    acc[k] += a;
+    acc[k] = Vec3(acc[k]) + a;
     drho[k] += d;
   }
   void clear_one(Index k) const {
     acc[k] = Vec3{};
-    drho[k] = 0.0;
+    drho[k] = 0;
   }
 };
 
@@ -102,8 +104,8 @@ struct LaneSums {
 // compiler vectorises), then i's shares summed and j's added to out, in lane
 // order. Not inlined into the traversal: apart, each keeps its values in
 // registers.
-template <bool NeedValue, bool NeedGradient, class S, class... Terms>
-[[gnu::noinline]] void run_lanes(PairLanes& L, const KernelTable& kernel, double eta2, S& sums, FluidReactions out,
+template <bool NeedValue, bool NeedGradient, class S, class Out, class... Terms>
+[[gnu::noinline]] void run_lanes(PairLanes& L, const KernelTable& kernel, double eta2, S& sums, Out out,
                                  const Terms&... terms) {
   const int n = L.count;
   if constexpr (NeedValue)
@@ -172,9 +174,9 @@ template <bool NeedValue, bool NeedGradient, class S, class... Terms>
 // rank's particles (talus/parallel.hpp): their totals are not wanted, so
 // pairs of two of them are skipped, and only their pairs with owned points
 // count (in the result's visc_max too).
-template <class Start, class Finish, class... Terms>
-MutualPassResult mutual_pair_pass(const NeighbourGrid& cells, const KernelTable& kernel, FluidReactions out,
-                               std::size_t owned, Start&& start, Finish&& finish, const Terms&... terms) {
+template <class Real, class Start, class Finish, class... Terms>
+MutualPassResult mutual_pair_pass(const NeighbourGrid& cells, const KernelTable& kernel, FluidReactions<Real> out,
+                                  std::size_t owned, Start&& start, Finish&& finish, const Terms&... terms) {
   constexpr bool need_value = (Terms::uses_value || ...);
   constexpr bool need_gradient = (Terms::uses_gradient || ...);
   const std::span<const Index> order = cells.order();

@@ -24,15 +24,16 @@ class WallCrossings {
   Vec3 put_back(World& world, std::size_t i, const Vec3& surface, const Vec3& normal, const Vec3& wall_velocity,
                 std::size_t wall, const std::string& what, double time) {
     auto x = world.fluid.position();
-    auto v = world.fluid.vector("velocity");
     const Vec3 was = x[i];
     x[i] = wrap_periodic(world, surface);
-    const double into = dot(v[i] - wall_velocity, normal);
     Vec3 change;
-    if (into < 0.0) {
-      v[i] -= normal * into;
-      change = normal * (-into * world.fluid.scalar("mass")[i]);
-    }
+    // Velocity and mass in the type they are kept in (float under mixed precision).
+    world.fluid.visit_vector("velocity", [&](auto v) {
+      const double into = dot(Vec3(v[i]) - wall_velocity, normal);
+      if (into >= 0.0) return;
+      v[i] = Vec3(v[i]) - normal * into;
+      world.fluid.visit_scalar("mass", [&](auto m) { change = normal * (-into * m[i]); });
+    });
     record(world, i, was, wall, what, time,
            "was put back on its surface (more wall layers, a smaller time step or \"method\": \"mdbc\" hold the "
            "fluid better)");
