@@ -167,8 +167,11 @@ ParamSet make_scene() {
   s.choice("precision", {"double", "mixed"})
       .default_value("double")
       .doc("how particle fields are stored: double, or mixed: the fields whose stage allows it in float (4 bytes "
-           "instead of 8), positions and every other field in double; arithmetic is in double either way. The "
-           "run prints which fields are in float (summary: precision)");
+           "instead of 8), positions and every other field in double; arithmetic is in double either way. wcsph "
+           "keeps its integrator's saved state in float, and the fluid's velocity, density, pressure, sound speed, "
+           "mass and rates where every wall model reads float (dynamic_particles), with no pair_terms and no "
+           "three-pass viscosity; dynamic_particles walls with method dbc keep theirs in float. The run prints "
+           "which fields are in float (summary: precision)");
   s.model_list("outputs", "writer", output_common()).optional().doc("writers and probes");
   s.object("checkpoint", checkpoint_params()).optional().doc("restart files");
   s.object("ranks", ranks_params()).optional().doc("the decomposition over MPI ranks (`mpirun -np N talus run`)");

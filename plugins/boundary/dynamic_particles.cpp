@@ -36,24 +36,62 @@ std::span<Vec3> start_positions(ParticleStore& s, std::size_t first, std::size_t
   return s.vector("position0").subspan(first, count);
 }
 
-// The wall store's fields over this model's particles [first, first + count).
-struct WallFields {
-  std::span<Vec3> x, v;
-  std::span<double> rho, p, c, m, drho, rho_n;
+// The wall fields that go to float together: in a scene of mixed precision,
+// with DBC walls (mDBC's ghost-node solve writes double), unless another
+// model that shares the wall store requires them in double.
+const FieldInfo* const wall_fields_in_float[] = {&wall_velocity,     &wall_density,      &wall_pressure,
+                                                 &wall_mass,         &wall_sound_speed,  &wall_density_rate,
+                                                 &wall_density_n};
+
+// The seven in one type; with the mirrored viscous velocity, eight.
+void keep_wall_fields_alike(ParticleStore& s) {
+  std::size_t in_float = 0, fields = std::size(wall_fields_in_float);
+  auto count = [&](const FieldInfo& f) {
+    const FieldType type = s.info(f.name).type;
+    in_float += type == FieldType::scalar_f32 || type == FieldType::vector_f32;
+  };
+  for (const FieldInfo* f : wall_fields_in_float) count(*f);
+  if (s.has(wall_viscous_velocity.name)) {
+    count(wall_viscous_velocity);
+    ++fields;
+  }
+  if (in_float == 0 || in_float == fields) return;
+  for (const FieldInfo* f : wall_fields_in_float) s.require(*f);
+  if (s.has(wall_viscous_velocity.name)) s.require(wall_viscous_velocity);
+}
+
+bool walls_in_float(const ParticleStore& s) { return s.info(wall_density.name).type == FieldType::scalar_f32; }
+
+// The wall store's fields over this model's particles [first, first + count),
+// all but the position in Real (double, or float in mixed precision).
+template <class Real>
+struct WallFieldsOf {
+  std::span<Vec3> x;
+  std::span<VectorOf<Real>> v;
+  std::span<Real> rho, p, c, m, drho, rho_n;
   std::span<std::int32_t> mat, body;
-  WallFields(ParticleStore& s, std::size_t first, std::size_t count)
+  WallFieldsOf(ParticleStore& s, std::size_t first, std::size_t count)
       : x(s.position().subspan(first, count)),
-        v(s.vector("velocity").subspan(first, count)),
-        rho(s.scalar("density").subspan(first, count)),
-        p(s.scalar("pressure").subspan(first, count)),
-        c(s.scalar("sound_speed").subspan(first, count)),
-        m(s.scalar("mass").subspan(first, count)),
-        drho(s.scalar("density_rate").subspan(first, count)),
-        rho_n(s.scalar("density_n").subspan(first, count)),
+        v(s.column<VectorOf<Real>>("velocity").subspan(first, count)),
+        rho(s.column<Real>("density").subspan(first, count)),
+        p(s.column<Real>("pressure").subspan(first, count)),
+        c(s.column<Real>("sound_speed").subspan(first, count)),
+        m(s.column<Real>("mass").subspan(first, count)),
+        drho(s.column<Real>("density_rate").subspan(first, count)),
+        rho_n(s.column<Real>("density_n").subspan(first, count)),
         mat(s.material().subspan(first, count)),
         body(s.body().subspan(first, count)) {}
-  sph::Neighbours neighbours() const { return {v.data(), rho.data(), p.data(), c.data(), m.data(), mat.data()}; }
+  sph::NeighbourFields<Real> neighbours() const {
+    return {v.data(), rho.data(), p.data(), c.data(), m.data(), mat.data()};
+  }
 };
+
+// f(WallFieldsOf<float>) or f(WallFieldsOf<double>), as the store keeps them.
+template <class F>
+decltype(auto) with_wall_fields(ParticleStore& s, std::size_t first, std::size_t count, F&& f) {
+  if (walls_in_float(s)) return f(WallFieldsOf<float>(s, first, count));
+  return f(WallFieldsOf<double>(s, first, count));
+}
 
 // The wall material: the body's "material", else the only fluid material.
 int wall_material(const World& world, const Body& body) {
@@ -69,13 +107,15 @@ int wall_material(const World& world, const Body& body) {
 
 // Shepard interpolation of the fluid velocity at a wall particle b (i = b, j = f):
 // v~_b = sum_f v_f W_bf / sum_f W_bf (Adami et al. 2012, eq. 22).
+// V: the fluid velocity's stored type (Vec3, or Vec3f in mixed precision).
+template <class V>
 struct VelocityShepard {
   static constexpr bool uses_value = true, uses_gradient = false;
-  const Vec3* velocity = nullptr;
+  const V* velocity = nullptr;
   template <class S>
   void pair(const sph::Pair& q, S& s) const {
     s.wsum += q.w;
-    s.vsum += velocity[q.j] * q.w;
+    s.vsum += Vec3(velocity[q.j]) * q.w;
   }
 };
 
@@ -125,9 +165,12 @@ DynamicParticles::DynamicParticles(const ParamValues& v)
 
 void DynamicParticles::setup(World& world, std::span<const int> bodies) {
   ParticleStore& s = world.boundary;
-  for (const FieldInfo* f : {&wall_velocity, &wall_density, &wall_pressure, &wall_mass, &wall_sound_speed,
-                             &wall_density_rate, &wall_density_n})
-    s.require(*f);
+  for (const FieldInfo* f : wall_fields_in_float) {
+    FieldInfo field = *f;
+    field.single_when_mixed = method_ == Method::dbc;
+    s.require(field);
+  }
+  keep_wall_fields_alike(s);
   if (count_ > 0 && first_ + count_ != s.size())
     throw RunError("dynamic_particles: setup called again after other wall particles were added");
   if (count_ == 0) first_ = s.size();
@@ -157,21 +200,17 @@ void DynamicParticles::setup(World& world, std::span<const int> bodies) {
                                                         world.dim);
         !adjusted.empty())
       world.warnings.add("wall '" + body.name + "' (" + v.pointer("shape") + "): " + adjusted);
-    auto x = s.position();
-    auto rho = s.scalar("density");
-    auto m = s.scalar("mass");
-    auto mat = s.material();
-    auto bid = s.body();
+    with_wall_fields(s, first, points.size(), [&](auto w) {
+      for (std::size_t k = 0; k < points.size(); ++k) {
+        w.x[k] = points[k];
+        w.rho[k] = rho0;
+        w.m[k] = mass;
+        w.mat[k] = material;
+        w.body[k] = bi;
+      }
+    });
     const auto surface = wall_surface(v.alternative("shape"), v.alternative_values("shape"), world.dim, world.lo,
                                       world.hi);
-    for (std::size_t k = 0; k < points.size(); ++k) {
-      const std::size_t i = first + k;
-      x[i] = points[k];
-      rho[i] = rho0;
-      m[i] = mass;
-      mat[i] = material;
-      bid[i] = bi;
-    }
     slot_of_body_[bi] = static_cast<int>(bodies_.size());
     bodies_.push_back(bi);
     body_names_.push_back(body.name);
@@ -196,16 +235,20 @@ void DynamicParticles::setup(World& world, std::span<const int> bodies) {
 void DynamicParticles::bind(World& world, const sph::FluidSettings& settings) {
   settings_ = settings;
   mirror_ = slip_ == sph::WallSlip::free_slip || (no_slip_ == NoSlip::extrapolated && settings.viscous_velocity);
-  if (mirror_) world.boundary.require(wall_viscous_velocity);
-  WallFields w(world.boundary, first_, count_);
+  if (mirror_) {
+    FieldInfo field = wall_viscous_velocity;
+    field.single_when_mixed = walls_in_float(world.boundary);  // in the type of the wall velocity it mirrors
+    world.boundary.require(field);
+  }
   find_ghosts(world);
   rho0_of_material_.assign(world.materials.size(), 0.0);
   for (std::size_t m = 0; m < world.materials.size(); ++m) rho0_of_material_[m] = world.materials[m].density;
   // Moving walls start with their prescribed velocity (an impulsively started lid moves from the first step).
-  if (moves_) {
-    const auto x0 = start_positions(world.boundary, first_, count_);
-    for (std::size_t k = 0; k < count_; ++k) w.v[k] = motion_[slot_of_body_[w.body[k]]].velocity(x0[k], world.time);
-  }
+  if (moves_)
+    with_wall_fields(world.boundary, first_, count_, [&](auto w) {
+      const auto x0 = start_positions(world.boundary, first_, count_);
+      for (std::size_t k = 0; k < count_; ++k) w.v[k] = motion_[slot_of_body_[w.body[k]]].velocity(x0[k], world.time);
+    });
   lay_out(world);
   initial_density(world);
   update_pressure(world);
@@ -217,19 +260,20 @@ void DynamicParticles::lay_out(World& world) {
   // Cell lists over the fluid's bounds and the walls' own (walls may sit
   // outside the domain); moving walls are clamped into the edge cells.
   Vec3 lo = settings_.lo, hi = settings_.hi;
-  for (const RowRange& r : ranges_) {
-    WallFields w(world.boundary, r.first, r.count);
-    for (std::size_t k = 0; k < r.count; ++k) by_material_[w.mat[k]].push_back(static_cast<Index>(r.first + k));
-    for (const Vec3& p : w.x)
+  const auto material = world.boundary.material();
+  const auto position = world.boundary.position();
+  for (const RowRange& r : ranges_)
+    for (std::size_t i = r.first; i < r.first + r.count; ++i) {
+      by_material_[material[i]].push_back(static_cast<Index>(i));
       for (int a = 0; a < world.dim; ++a) {
-        lo[a] = std::min(lo[a], p[a]);
-        hi[a] = std::max(hi[a], p[a] + 1e-9);
+        lo[a] = std::min(lo[a], position[i][a]);
+        hi[a] = std::max(hi[a], position[i][a] + 1e-9);
       }
-  }
+    }
   cells_.resize(ranges_.size());
   for (NeighbourGrid& cells : cells_) cells.configure(world.dim, lo, hi, settings_.kernel->support_radius(), world.periodic);
   build_cells(world);
-  inv_rho_.assign(count_, 0.0);
+  refresh_inverse_density(world);
   refresh_sets(world);
 }
 
@@ -274,24 +318,28 @@ void DynamicParticles::rows_moved(World& world) {
   lay_out(world);
 }
 
-std::span<Vec3> DynamicParticles::viscous_velocity(World& world) const {
-  if (!mirror_) return {};
-  return world.boundary.vector(wall_viscous_velocity.name);
-}
-
 // A wall set per range of rows: the stage's fluid-wall passes read each.
 void DynamicParticles::refresh_sets(World& world) {
   sets_.resize(ranges_.size());
-  const std::span<Vec3> viscous = viscous_velocity(world);
   for (std::size_t k = 0; k < ranges_.size(); ++k) {
     const RowRange& r = ranges_[k];
-    WallFields w(world.boundary, r.first, r.count);
     sph::WallSet& set = sets_[k];
+    set = sph::WallSet{};
     set.cells = &cells_[k];
-    set.position = w.x;
-    set.fields = w.neighbours();
-    set.fields.inv_density = inv_rho_.data() + r.offset;
-    set.viscous_velocity = mirror_ ? viscous.data() + r.first : w.v.data();
+    set.position = world.boundary.position().subspan(r.first, r.count);
+    with_wall_fields(world.boundary, r.first, r.count, [&](auto w) {
+      using Real = typename decltype(w.rho)::value_type;
+      auto fields = w.neighbours();
+      fields.inv_density = inv_rho_.as<Real>().data() + r.offset;
+      const auto* viscous = mirror_ ? viscous_velocity<Real>(world).data() + r.first : w.v.data();
+      if constexpr (std::is_same_v<Real, float>) {
+        set.single_fields = fields;
+        set.viscous_velocity_single = viscous;
+      } else {
+        set.fields = fields;
+        set.viscous_velocity = viscous;
+      }
+    });
   }
 }
 
@@ -302,38 +350,43 @@ void DynamicParticles::refresh_sets(World& world) {
 void DynamicParticles::initial_density(World& world) {
   ParticleStore& fs = world.fluid;
   if (fs.size() == 0) return;
-  WallFields w(world.boundary, first_, count_);
-  const auto fp = fs.scalar("pressure");
-  const auto frho = fs.scalar("density");
   const KernelTable& k = *settings_.kernel;
   const NeighbourGrid& fluid_cells = *settings_.cells;
   const Vec3 g = world.gravity;
-  const std::span<const Vec3> wx = w.x;
+  const std::span<const Vec3> wx = world.boundary.position().subspan(first_, count_);
+  const auto wall_material = world.boundary.material().subspan(first_, count_);
   auto start = [&](Index) { return sph::ExtrapolationSums{}; };
-  auto finish = [&](Index i, const sph::ExtrapolationSums& s) {
-    if (s.wsum <= 0.0) return;
-    const Material& mat = world.materials[w.mat[i]];
-    const double pb = std::max(0.0, s.psum / s.wsum);
-    w.rho[i] = std::max(mat.density, mat.eos->density_at(pb));
-  };
-  sph::pair_pass(count_, wx, fluid_cells, k, sph::other_set, start, finish,
-                 sph::PressureExtrapolation{fp.data(), frho.data(), g});
+  world.boundary.visit_scalar(wall_density.name, [&](auto all_rho) {
+    const auto rho = all_rho.subspan(first_, count_);
+    auto finish = [&](Index i, const sph::ExtrapolationSums& s) {
+      if (s.wsum <= 0.0) return;
+      const Material& mat = world.materials[wall_material[i]];
+      const double pb = std::max(0.0, s.psum / s.wsum);
+      rho[i] = std::max(mat.density, mat.eos->density_at(pb));
+    };
+    // The fluid's pressure and density in the type they are kept in (the stage keeps them alike).
+    auto extrapolate = [&](auto fp, auto frho) {
+      sph::pair_pass(count_, wx, fluid_cells, k, sph::other_set, start, finish,
+                     sph::PressureExtrapolation{fp.data(), frho.data(), g});
+    };
+    if (fs.info("density").type == FieldType::scalar_f32)
+      extrapolate(fs.scalar_f32("pressure"), fs.scalar_f32("density"));
+    else
+      extrapolate(fs.scalar("pressure"), fs.scalar("density"));
+  });
 }
 
 void DynamicParticles::update_pressure(World& world) {
-  ParticleStore& s = world.boundary;
-  auto rho = s.scalar("density");
-  auto p = s.scalar("pressure");
-  auto c = s.scalar("sound_speed");
-  for (std::size_t m = 0; m < by_material_.size(); ++m)
-    if (!by_material_[m].empty()) world.materials[m].eos->pressure(by_material_[m], rho.data(), p.data(), c.data());
+  with_wall_fields(world.boundary, 0, world.boundary.size(), [&](auto w) {
+    for (std::size_t m = 0; m < by_material_.size(); ++m)
+      if (!by_material_[m].empty())
+        pressure_of(*world.materials[m].eos, by_material_[m], w.rho.data(), w.p.data(), w.c.data());
+  });
 }
 
 void DynamicParticles::begin_step(World& world) {
-  for (const RowRange& r : ranges_) {
-    WallFields w(world.boundary, r.first, r.count);
-    std::ranges::copy(w.rho, w.rho_n.begin());
-  }
+  for (const RowRange& r : ranges_)
+    with_wall_fields(world.boundary, r.first, r.count, [](auto w) { std::ranges::copy(w.rho, w.rho_n.begin()); });
 }
 
 void DynamicParticles::hold_fluid(World& world, double time) {
@@ -392,7 +445,7 @@ void DynamicParticles::find_ghosts(World& world) {
   if (method_ != Method::mdbc) return;
   ghost0_.resize(count_);
   for (const RowRange& r : ranges_) {
-    WallFields w(world.boundary, r.first, r.count);
+    const WallFieldsOf<double> w(world.boundary, r.first, r.count);  // mDBC walls stay in double
     const std::span<const Vec3> x0 = moves_ ? start_positions(world.boundary, r.first, r.count) : w.x;
     for (std::size_t b = 0; b < r.count; ++b) {
       const Vec3& p = x0[b];
@@ -407,7 +460,7 @@ void DynamicParticles::find_ghosts(World& world) {
 void DynamicParticles::place_ghosts(World& world, double time) {
   if (!moves_ || method_ != Method::mdbc) return;
   for (const RowRange& r : ranges_) {
-    WallFields w(world.boundary, r.first, r.count);
+    const WallFieldsOf<double> w(world.boundary, r.first, r.count);
     for (std::size_t b = 0; b < r.count; ++b)
       ghost_[r.offset + b] = wrap_periodic(world, motion_[slot_of_body_[w.body[b]]].position(ghost0_[r.offset + b], time));
   }
@@ -419,19 +472,21 @@ void DynamicParticles::place_ghosts(World& world, double time) {
 std::uint64_t DynamicParticles::fill_from_ghost_nodes(World& world, const sph::FluidView& fluid) {
   const std::size_t owned = owned_count(world);
   const std::size_t first = ranges_.empty() ? 0 : ranges_.front().first;
-  const std::span<Vec3> viscous = viscous_velocity(world);
-  WallFields mine(world.boundary, first, owned);
+  // mDBC walls stay in double: the ghost-node solve writes the wall pressure and viscous velocity in double.
+  const std::span<Vec3> viscous = viscous_velocity<double>(world);
+  const WallFieldsOf<double> mine(world.boundary, first, owned);
   const std::uint64_t pairs = sph::extrapolate_from_ghost_nodes(
       world.dim, {mine.x, std::span<const Vec3>(ghost_).first(owned), mine.v}, fluid, *settings_.kernel, slip_,
       mine.p, viscous.empty() ? viscous : viscous.subspan(first, owned));
   // The wall density from its material's EOS, never below rho0 (as DBC: a wall never pulls the fluid).
-  inv_rho_.resize(count_);
+  std::vector<double>& inv_rho = inv_rho_.as<double>();
+  inv_rho.resize(count_);
   for (const RowRange& r : ranges_) {
-    WallFields w(world.boundary, r.first, r.count);
+    const WallFieldsOf<double> w(world.boundary, r.first, r.count);
     for (std::size_t b = 0; b < r.count; ++b) {
       const Material& mat = world.materials[w.mat[b]];
       w.rho[b] = std::max(mat.density, mat.eos->density_at(std::max(0.0, w.p[b])));
-      inv_rho_[r.offset + b] = 1.0 / w.rho[b];
+      inv_rho[r.offset + b] = 1.0 / w.rho[b];
     }
   }
   update_pressure(world);
@@ -445,11 +500,13 @@ std::uint64_t DynamicParticles::fill_from_ghost_nodes(World& world, const sph::F
 }
 
 void DynamicParticles::refresh_inverse_density(World& world) {
-  inv_rho_.resize(count_);
-  for (const RowRange& r : ranges_) {
-    WallFields w(world.boundary, r.first, r.count);
-    for (std::size_t b = 0; b < r.count; ++b) inv_rho_[r.offset + b] = 1.0 / w.rho[b];
-  }
+  for (const RowRange& r : ranges_)
+    with_wall_fields(world.boundary, r.first, r.count, [&](auto w) {
+      using Real = typename decltype(w.rho)::value_type;
+      std::vector<Real>& inv_rho = inv_rho_.as<Real>();
+      inv_rho.resize(count_);
+      for (std::size_t b = 0; b < r.count; ++b) inv_rho[r.offset + b] = static_cast<Real>(1.0 / w.rho[b]);
+    });
 }
 
 std::size_t DynamicParticles::owned_count(const World& world) const {
@@ -465,56 +522,58 @@ std::uint64_t DynamicParticles::fill_continuity(World& world, const sph::FluidVi
   refresh_inverse_density(world);
   const std::size_t owned = owned_count(world);
   const std::size_t first = ranges_.empty() ? 0 : ranges_.front().first;
-  WallFields w(world.boundary, first, owned);
-
-  // Continuity of each wall particle with its fluid neighbours and, for the
-  // extrapolated no-slip, the mirrored velocity v_b* = 2 v_b - v~_b.
-  auto start = [&](Index b) { return WallSums{w.v[b], w.rho[b], 0.0, 0.0, Vec3{}}; };
-  const std::span<Vec3> mirrored = mirror_ ? viscous_velocity(world).subspan(first, owned) : std::span<Vec3>();
-  auto finish = [&](Index b, const WallSums& s) { w.drho[b] = s.drho; };
-  auto finish_mirror = [&](Index b, const WallSums& s) {
-    w.drho[b] = s.drho;
-    // No fluid in reach: nothing to mirror, the wall's own velocity.
-    mirrored[b] = s.wsum > 0.0 ? w.v[b] * 2.0 - s.vsum * (1.0 / s.wsum) : w.v[b];
-  };
-  const std::span<const Vec3> wx = w.x;
   const KernelTable& kernel = *settings_.kernel;
-  const sph::Continuity continuity{fluid.neighbours()};
-  std::uint64_t pairs = 0;
+  // The walls and the fluid each in the type they are kept in.
+  const std::uint64_t pairs = with_wall_fields(world.boundary, first, owned, [&](auto w) {
+    using Real = typename decltype(w.rho)::value_type;
+    // Continuity of each wall particle with its fluid neighbours and, for the
+    // extrapolated no-slip, the mirrored velocity v_b* = 2 v_b - v~_b.
+    auto start = [&](Index b) { return WallSums{w.v[b], w.rho[b], 0.0, 0.0, Vec3{}}; };
+    const auto mirrored = mirror_ ? viscous_velocity<Real>(world).subspan(first, owned) : decltype(w.v){};
+    auto finish = [&](Index b, const WallSums& s) { w.drho[b] = s.drho; };
+    auto finish_mirror = [&](Index b, const WallSums& s) {
+      w.drho[b] = s.drho;
+      // No fluid in reach: nothing to mirror, the wall's own velocity.
+      mirrored[b] = s.wsum > 0.0 ? w.v[b] * 2.0 - s.vsum * (1.0 / s.wsum) : Vec3(w.v[b]);
+    };
+    const std::span<const Vec3> wx = w.x;
+    return fluid.visit_neighbours([&](const auto& nb) {
+      const sph::Continuity continuity{nb};
+      if (!mirror_) return sph::pair_pass(owned, wx, *fluid.cells, kernel, sph::other_set, start, finish, continuity);
+      return sph::pair_pass(owned, wx, *fluid.cells, kernel, sph::other_set, start, finish_mirror, continuity,
+                            VelocityShepard{nb.velocity});
+    });
+  });
   if (mirror_) {
-    pairs = sph::pair_pass(owned, wx, *fluid.cells, kernel, sph::other_set, start, finish_mirror,
-                           continuity, VelocityShepard{fluid.velocity.data()});
     // The halo copies were skipped: their values come from their owners.
     static const std::string fields[] = {wall_viscous_velocity.name};
     world.parallel().refresh_halo(world.boundary, fields);
-  } else {
-    pairs = sph::pair_pass(owned, wx, *fluid.cells, kernel, sph::other_set, start, finish, continuity);
   }
   return pairs;
 }
 
 void DynamicParticles::advance_walls(World& world, double time, double dt) {
   const double* rho0 = rho0_of_material_.data();
-  for (const RowRange& r : ranges_) {
-    WallFields w(world.boundary, r.first, r.count);
-    if (method_ == Method::dbc) {
+  for (const RowRange& r : ranges_)
+    with_wall_fields(world.boundary, r.first, r.count, [&](auto w) {
+      if (method_ == Method::dbc) {
 #pragma omp parallel for schedule(static) if (r.count >= 4096)
-      for (std::size_t b = 0; b < r.count; ++b) {
-        // DualSPHysics: a wall particle never goes below rho0, so walls never pull fluid.
-        w.rho[b] = std::max(rho0[w.mat[b]], w.rho_n[b] + dt * w.drho[b]);
+        for (std::size_t b = 0; b < r.count; ++b) {
+          // DualSPHysics: a wall particle never goes below rho0, so walls never pull fluid.
+          w.rho[b] = std::max(rho0[w.mat[b]], w.rho_n[b] + dt * w.drho[b]);
+        }
       }
-    }
-    if (moves_) {
-      const auto x0 = start_positions(world.boundary, r.first, r.count);
+      if (moves_) {
+        const auto x0 = start_positions(world.boundary, r.first, r.count);
 #pragma omp parallel for schedule(static) if (r.count >= 4096)
-      for (std::size_t b = 0; b < r.count; ++b) {
-        const PrescribedMotion& motion = motion_[slot_of_body_[w.body[b]]];
-        // A wall moving along a periodic axis (the lid of a Couette cell) stays in the period.
-        w.x[b] = wrap_periodic(world, motion.position(x0[b], time));
-        w.v[b] = motion.velocity(x0[b], time);
+        for (std::size_t b = 0; b < r.count; ++b) {
+          const PrescribedMotion& motion = motion_[slot_of_body_[w.body[b]]];
+          // A wall moving along a periodic axis (the lid of a Couette cell) stays in the period.
+          w.x[b] = wrap_periodic(world, motion.position(x0[b], time));
+          w.v[b] = motion.velocity(x0[b], time);
+        }
       }
-    }
-  }
+    });
   place_ghosts(world, time);
   update_pressure(world);
 }

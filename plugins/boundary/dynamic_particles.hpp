@@ -50,10 +50,12 @@
 #include <vector>
 
 #include "talus/neighbour_grid.hpp"
+#include "talus/scratch_column.hpp"
 #include "talus/motion.hpp"
 #include "talus/sph/boundary_pass.hpp"
 #include "talus/sph/ghost_nodes.hpp"
 #include "talus/sph/wall_crossings.hpp"
+#include "talus/sph/wall_fields.hpp"
 
 namespace talus::boundary {
 
@@ -76,6 +78,8 @@ class DynamicParticles final : public sph::SphBoundary {
   void advance_walls(World& world, double time, double dt) override;
   void hold_fluid(World& world, double time) override;
   void describe_passes(StagePlan& plan) const override;
+  // Its wall-side passes read the fluid in the type the stage keeps it in.
+  bool reads_single_fluid() const override { return true; }
 
   std::size_t first() const { return first_; }
   std::size_t count() const { return count_; }
@@ -93,7 +97,12 @@ class DynamicParticles final : public sph::SphBoundary {
   void refresh_sets(World& world);  // sets_ at the store's current arrays
   void build_cells(World& world);   // cells_ at my particles' current positions
   void lay_out(World& world);       // what depends on where my particles sit in the store
-  std::span<Vec3> viscous_velocity(World& world) const;  // v_b* by store row (empty without mirror_)
+  // v_b* by store row (empty without mirror_), kept in the type of the wall velocity.
+  template <class Real>
+  std::span<VectorOf<Real>> viscous_velocity(World& world) const {
+    if (!mirror_) return {};
+    return world.boundary.column<VectorOf<Real>>(sph::wall_viscous_velocity.name);
+  }
   // mDBC: each of my particles' ghost node at t = 0 (mirrored through its
   // wall's surface from its position0), then where the wall's motion has it.
   void find_ghosts(World& world);
@@ -126,7 +135,7 @@ class DynamicParticles final : public sph::SphBoundary {
   bool moves_ = false;
   sph::FluidSettings settings_;
   std::vector<NeighbourGrid> cells_;  // per range
-  std::vector<double> inv_rho_;  // 1/rho of my wall particles, refreshed by every fill_wall_state()
+  ScratchColumn inv_rho_;  // 1/rho of my wall particles, refreshed by every fill_wall_state()
   NoSlip no_slip_ = NoSlip::extrapolated;
   Method method_ = Method::dbc;
   sph::WallSlip slip_ = sph::WallSlip::no_slip;

@@ -20,18 +20,19 @@ namespace talus::wcsph {
 
 namespace {
 
+template <class Real>
 struct PassContext {
   World& world;
-  FluidFields& f;
+  const FluidFieldsOf<Real>& f;
   const NeighbourGrid& cells;
   const double* mu;  // per material
   Vec3 gravity;
-  sph::Neighbours nb;  // the fluid's fields, with 1/rho and rho/c^2
+  sph::NeighbourFields<Real> nb;  // the fluid's fields, with 1/rho
 };
 
-template <class... Terms>
-sph::MutualPassResult run_force_pass(const PassContext& ctx, const Terms&... terms) {
-  FluidFields& f = ctx.f;
+template <class Real, class... Terms>
+sph::MutualPassResult run_force_pass(const PassContext<Real>& ctx, const Terms&... terms) {
+  const FluidFieldsOf<Real>& f = ctx.f;
   const double* mu = ctx.mu;
   const Vec3 g = ctx.gravity;
   auto start = [&](Index i) {
@@ -47,24 +48,25 @@ sph::MutualPassResult run_force_pass(const PassContext& ctx, const Terms&... ter
     s.mat = f.mat[i];
     return s;
   };
-  auto finish = [&](Index i) { f.a[i] += g; };
+  auto finish = [&](Index i) { f.a[i] = Vec3(f.a[i]) + g; };
   const sph::FluidReactions out{f.a.data(), f.drho.data()};
   return sph::mutual_pair_pass(ctx.cells, ctx.world.kernel, out, ctx.world.fluid.owned_size(), start, finish,
                                terms...);
 }
 
-template <class... Terms>
-sph::MutualPassResult with_density_terms(const PassContext& ctx, DensityMode density, Diffusion diffusion,
+template <class Real, class... Terms>
+sph::MutualPassResult with_density_terms(const PassContext<Real>& ctx, DensityMode density, Diffusion diffusion,
                                          double delta_h_c0, const Terms&... terms) {
-  const sph::Neighbours nb = ctx.nb;
+  using NB = sph::NeighbourFields<Real>;
+  const NB nb = ctx.nb;
   if (density == DensityMode::summation) return run_force_pass(ctx, terms...);
   const sph::Continuity cont{nb};
   switch (diffusion) {
     case Diffusion::none: return run_force_pass(ctx, terms..., cont);
     case Diffusion::molteni:
-      return run_force_pass(ctx, terms..., cont, sph::DensityDiffusion<false>{nb, delta_h_c0, ctx.gravity});
+      return run_force_pass(ctx, terms..., cont, sph::DensityDiffusion<false, NB>{nb, delta_h_c0, ctx.gravity});
     case Diffusion::fourtakas:
-      return run_force_pass(ctx, terms..., cont, sph::DensityDiffusion<true>{nb, delta_h_c0, ctx.gravity});
+      return run_force_pass(ctx, terms..., cont, sph::DensityDiffusion<true, NB>{nb, delta_h_c0, ctx.gravity});
   }
   return {};
 }
@@ -73,45 +75,52 @@ sph::MutualPassResult with_density_terms(const PassContext& ctx, DensityMode den
 
 // Per-particle reciprocals once per evaluation instead of divisions per pair.
 void WcsphStage::refresh_reciprocals(World& world) {
-  FluidFields f(world.fluid);
-  const std::size_t n = f.rho.size();
-  inv_rho_.resize(n);
+  with_fluid_fields(world.fluid, [&](auto f) {
+    const std::size_t n = f.rho.size();
+    using Real = typename decltype(f.rho)::value_type;
+    auto& inv_rho = inv_rho_.as<Real>();
+    inv_rho.resize(n);
 #pragma omp parallel for schedule(static) if (n >= 4096)
-  for (std::size_t i = 0; i < n; ++i) inv_rho_[i] = 1.0 / f.rho[i];
+    for (std::size_t i = 0; i < n; ++i) inv_rho[i] = static_cast<Real>(1.0 / f.rho[i]);
+  });
 }
 
 std::uint64_t WcsphStage::fluid_pass(World& world) {
-  FluidFields f(world.fluid);
-  sph::Neighbours nb = f.neighbours();
-  nb.inv_density = inv_rho_.data();
-  // The three-pass viscosity's force pass reads mu_eff of both particles; start() then takes mu_eff[i].
-  if (per_particle_viscosity_) nb.viscosity = world.fluid.scalar("mu_eff").data();
-  const PassContext ctx{world,          f, cells_, per_particle_viscosity_ ? nullptr : material_mu_.data(),
-                        world.gravity, nb};
-  const sph::PressureForce pressure{nb};
-  const double delta_h_c0 = delta_ * h_ * c0_max_;
-  sph::MutualPassResult result;
-  with_viscosity_term<Neighbour::fluid>(viscosity_settings(world), nb, nb, [&](const auto& viscous) {
-    result = with_density_terms(ctx, density_, diffusion_, delta_h_c0, pressure, viscous);
-    return result.evaluations;
+  const sph::MutualPassResult result = with_fluid_fields(world.fluid, [&](auto f) {
+    using Real = typename decltype(f.rho)::value_type;
+    auto nb = f.neighbours();
+    nb.inv_density = inv_rho_.as<Real>().data();
+    // The three-pass viscosity's force pass reads mu_eff of both particles; start() then takes mu_eff[i].
+    if (per_particle_viscosity_) nb.viscosity = world.fluid.scalar("mu_eff").data();
+    const PassContext<Real> ctx{world,         f, cells_, per_particle_viscosity_ ? nullptr : material_mu_.data(),
+                                world.gravity, nb};
+    const sph::PressureForce pressure{nb};
+    const double delta_h_c0 = delta_ * h_ * c0_max_;
+    sph::MutualPassResult passed;
+    with_viscosity_term<Neighbour::fluid>(viscosity_settings(world), nb, nb, [&](const auto& viscous) {
+      passed = with_density_terms(ctx, density_, diffusion_, delta_h_c0, pressure, viscous);
+      return passed.evaluations;
+    });
+    return passed;
   });
   fluid_visc_max_ = result.visc_max;
   return result.evaluations;
 }
 
 void WcsphStage::density_summation(World& world) {
-  FluidFields f(world.fluid);
-  struct Sums {
-    double rho_sum = 0.0;
-  };
-  const double w0 = world.kernel.w0();
-  const std::span<const double> m = f.m;
-  auto start = [](Index) { return Sums{}; };
-  auto finish = [&](Index i, const Sums& s) { f.rho[i] = s.rho_sum + m[i] * w0; };  // self term W(0)
-  // Owned rows only: the halo's densities come from their owners after the pass.
-  const std::span<const Vec3> x = f.x;
-  pairs_total_ += sph::pair_pass(world.fluid.owned_size(), x, cells_, world.kernel, sph::same_set, start, finish,
-                                 sph::DensitySum{m.data()});
+  with_fluid_fields(world.fluid, [&](auto f) {
+    struct Sums {
+      double rho_sum = 0.0;
+    };
+    const double w0 = world.kernel.w0();
+    const auto m = f.m;
+    auto start = [](Index) { return Sums{}; };
+    auto finish = [&](Index i, const Sums& s) { f.rho[i] = s.rho_sum + m[i] * w0; };  // self term W(0)
+    // Owned rows only: the halo's densities come from their owners after the pass.
+    const std::span<const Vec3> x = f.x;
+    pairs_total_ += sph::pair_pass(world.fluid.owned_size(), x, cells_, world.kernel, sph::same_set, start, finish,
+                                   sph::DensitySum{m.data()});
+  });
   pairs_total_ += wall_density_passes(world);
 }
 
@@ -128,15 +137,16 @@ void WcsphStage::refresh_halos(World& world) {
 }
 
 void WcsphStage::update_pressure(World& world) {
-  FluidFields f(world.fluid);
-  for (int m : fluid_materials_)
-    world.materials[m].eos->pressure(world.material_particles(m), f.rho.data(), f.p.data(), f.c.data());
+  with_fluid_fields(world.fluid, [&](auto f) {
+    for (int m : fluid_materials_)
+      pressure_of(*world.materials[m].eos, world.material_particles(m), f.rho.data(), f.p.data(), f.c.data());
+  });
 }
 
 void WcsphStage::compute_rates(World& world) {
+  keep_fluid_fields_alike(world.fluid);  // a later stage's setup may have widened one
   refresh_halos(world);
-  FluidFields f(world.fluid);
-  cells_.build(f.x);
+  cells_.build(world.fluid.position());
   if (density_ == DensityMode::summation) {
     density_summation(world);
     static const std::string density[] = {"density"};
@@ -153,7 +163,7 @@ void WcsphStage::compute_rates(World& world) {
   pairs_total_ += wall_passes(world);
   if (!pair_terms_.empty()) {
     const sph::FluidView view = fluid_view(world);
-    const sph::FluidRates rates{f.a, f.drho, &rates_visc_max_};
+    const sph::FluidRates rates = fluid_rates(world);
     for (sph::PairTerm* term : pair_terms_) pairs_total_ += term->add_rates({world, view, rates});
   }
   if (point_implicit_) scale_stiff_particles(world);

@@ -91,7 +91,7 @@ std::uint64_t WcsphStage::strain_rate_pass(World& world) {
   FluidFields f(world.fluid);
   auto shear = world.fluid.scalar("shear_rate");
   sph::Neighbours nb = f.neighbours();
-  nb.inv_density = inv_rho_.data();
+  nb.inv_density = inv_rho_.as<double>().data();
   const int dim = world.dim;
   auto start = [&](Index i) {
     StrainSums s;
@@ -133,6 +133,7 @@ void WcsphStage::apparent_viscosity_pass(World& world) {
   }
   // The bound is over this rank's own particles (halo rows have part of their neighbours).
   const std::size_t owned = world.fluid.owned_size();
+  const std::vector<double>& inv_rho = inv_rho_.as<double>();  // the three passes keep the fluid in double
   double nu_max = 0.0;
   if (point_implicit_) {
     // Inertia 1 + dt D_i; the explicit viscous bound then sees nu_i / (1 + dt D_i).
@@ -142,13 +143,13 @@ void WcsphStage::apparent_viscosity_pass(World& world) {
     const double dt = courant_ * h_ / c0_max_, s_bulk = bulk_viscous_support_;
 #pragma omp parallel for schedule(static) reduction(max : nu_max) if (n >= 4096)
     for (std::size_t i = 0; i < n; ++i) {
-      const double nu = mu[i] * inv_rho_[i];
+      const double nu = mu[i] * inv_rho[i];
       inertia[i] = 1.0 + dt * 4.0 * nu * std::max(support[i], s_bulk);
       if (i < owned) nu_max = std::max(nu_max, nu / inertia[i]);
     }
   } else {
 #pragma omp parallel for schedule(static) reduction(max : nu_max) if (n >= 4096)
-    for (std::size_t i = 0; i < owned; ++i) nu_max = std::max(nu_max, mu[i] * inv_rho_[i]);
+    for (std::size_t i = 0; i < owned; ++i) nu_max = std::max(nu_max, mu[i] * inv_rho[i]);
   }
   nu_field_max_ = nu_max;
   // The force pass reads the neighbours' mu_eff: the halo's from their owners.

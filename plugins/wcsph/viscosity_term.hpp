@@ -10,6 +10,8 @@
 #pragma once
 
 #include <cstdint>
+#include <stdexcept>
+#include <type_traits>
 
 #include "talus/kernel_table.hpp"
 #include "talus/sph/fluid_terms.hpp"
@@ -31,14 +33,18 @@ struct ViscositySettings {
 
 // Calls run(term) with the viscous term for neighbours `nb` (visc_nb: the same
 // fields, with the velocity the viscosity sees) and returns what run returns.
-template <Neighbour Side, class Run>
-std::uint64_t with_viscosity_term(const ViscositySettings& v, const sph::Neighbours& nb, const sph::Neighbours& visc_nb,
-                                  Run&& run) {
+// NB: the fields' NeighbourFields type; mu_eff per particle needs double.
+template <Neighbour Side, class NB, class Run>
+std::uint64_t with_viscosity_term(const ViscositySettings& v, const NB& nb, const NB& visc_nb, Run&& run) {
   if constexpr (Side == Neighbour::fluid) {
     if (v.per_particle) {
-      if (v.mean == sph::ViscosityMean::harmonic)
-        return run(sph::LaminarViscosityField<sph::ViscosityMean::harmonic>{nb, v.laminar_eta2});
-      return run(sph::LaminarViscosityField<sph::ViscosityMean::arithmetic>{nb, v.laminar_eta2});
+      if constexpr (!std::is_same_v<NB, sph::Neighbours>) {
+        throw std::logic_error("the three-pass viscosity reads the fluid in double");
+      } else {
+        if (v.mean == sph::ViscosityMean::harmonic)
+          return run(sph::LaminarViscosityField<sph::ViscosityMean::harmonic>{nb, v.laminar_eta2});
+        return run(sph::LaminarViscosityField<sph::ViscosityMean::arithmetic>{nb, v.laminar_eta2});
+      }
     }
   }
   switch (v.model) {
@@ -46,7 +52,7 @@ std::uint64_t with_viscosity_term(const ViscositySettings& v, const sph::Neighbo
     // its own unless the wall is free-slip (sph/boundary_pass.hpp).
     case ViscosityModel::artificial: return run(sph::ArtificialViscosity{Side == Neighbour::wall ? visc_nb : nb, v.alpha_h});
     case ViscosityModel::laminar:
-      return run(sph::LaminarViscosity<Side == Neighbour::wall>{visc_nb, v.material_mu, v.laminar_eta2});
+      return run(sph::LaminarViscosity<Side == Neighbour::wall, NB>{visc_nb, v.material_mu, v.laminar_eta2});
     case ViscosityModel::laplacian: return run(sph::LaplacianViscosity{visc_nb, v.kernel, v.material_mu});
   }
   return 0;

@@ -39,9 +39,12 @@ struct BodyReaction {
   }
 };
 
+// Real: the type the fluid is kept in (double, or float in mixed precision).
+template <class Real>
 struct WallPass {
   const sph::FluidView& fluid;
-  const sph::FluidRates& rates;
+  sph::NeighbourFields<Real> own;   // the fluid's fields, as the i-state of the pass
+  sph::FluidReactions<Real> rates;  // the fluid's acceleration and density rate
   double* visc_max_by_thread;  // a cache line per thread: the largest s.visc its particles had
   const sph::WallSet& set;
   const KernelTable& kernel;
@@ -56,17 +59,17 @@ struct WallPass {
   template <class S>
   S start(Index i) const {
     S s;
-    s.v = fluid.velocity[i];
-    s.rho = fluid.density[i];
+    s.v = own.velocity[i];
+    s.rho = own.density[i];
     s.inv_rho = 1.0 / s.rho;
-    s.p = fluid.pressure[i];
-    s.c = fluid.sound_speed[i];
+    s.p = own.pressure[i];
+    s.c = own.sound_speed[i];
     s.mu = fluid.viscosity.empty() ? material_mu[fluid.material[i]] : fluid.viscosity[i];
     return s;
   }
   void add_rates(Index i, const FluidSums& s) const {
-    rates.acceleration[i] += s.acc;
-    if (continuity) rates.density_rate[i] += s.drho;
+    rates.acc[i] = Vec3(rates.acc[i]) + s.acc;
+    if (continuity) rates.drho[i] += s.drho;
     double& visc_max = visc_max_by_thread[thread_stride * omp_get_thread_num()];
     visc_max = std::max(visc_max, s.visc);
   }
@@ -91,7 +94,7 @@ struct WallPass {
     auto first = [&](Index i) { return start<BodySums>(i); };
     auto finish = [&](Index i, const BodySums& s, BodyReaction& on_body) {
       add_rates(i, s);
-      const double mi = fluid.mass[i];
+      const double mi = own.mass[i];
       const Vec3 force = s.acc * (-mi);
       on_body.force += force;
       on_body.torque += cross(arm_of(i), force) + s.moment * mi;
@@ -105,17 +108,42 @@ struct WallPass {
 }  // namespace
 
 sph::FluidView WcsphStage::fluid_view(World& world) const {
-  FluidFields f(world.fluid);
-  sph::FluidView fluid{&cells_, f.x, f.v, f.rho, f.p, f.c, f.m, f.mat};
-  fluid.inv_density = inv_rho_;
-  if (per_particle_viscosity_) fluid.viscosity = world.fluid.scalar("mu_eff");
+  ParticleStore& s = world.fluid;
+  sph::FluidView fluid{&cells_, s.position()};
+  fluid.material = s.material();
+  if (per_particle_viscosity_) fluid.viscosity = s.scalar("mu_eff");
+  if (fluid_in_float(s)) {
+    const FluidFieldsOf<float> f(s);
+    fluid.single = f.neighbours();
+    fluid.single.inv_density = inv_rho_.as<float>().data();
+    return fluid;
+  }
+  const FluidFields f(s);
+  fluid.velocity = f.v;
+  fluid.density = f.rho;
+  fluid.pressure = f.p;
+  fluid.sound_speed = f.c;
+  fluid.mass = f.m;
+  fluid.inv_density = inv_rho_.as<double>();
   return fluid;
 }
 
+sph::FluidRates WcsphStage::fluid_rates(World& world) {
+  ParticleStore& s = world.fluid;
+  sph::FluidRates rates{{}, {}, &rates_visc_max_};
+  if (fluid_in_float(s)) {
+    rates.acceleration_single = s.vector_f32("acceleration");
+    rates.density_rate_single = s.scalar_f32("density_rate");
+  } else {
+    rates.acceleration = s.vector("acceleration");
+    rates.density_rate = s.scalar("density_rate");
+  }
+  return rates;
+}
+
 std::uint64_t WcsphStage::wall_passes(World& world) {
-  FluidFields f(world.fluid);
   const sph::FluidView fluid = fluid_view(world);
-  const sph::FluidRates rates{f.a, f.drho, &rates_visc_max_};
+  const sph::FluidRates rates = fluid_rates(world);
   visc_max_by_thread_.assign(thread_stride * omp_get_max_threads(), 0.0);
   const ViscositySettings viscosity = viscosity_settings(world);
   const bool continuity = density_ == DensityMode::continuity;
@@ -123,22 +151,27 @@ std::uint64_t WcsphStage::wall_passes(World& world) {
   for (sph::SphBoundary* wall : walls_) {
     pairs += wall->fill_wall_state(world, fluid);
     const std::span<const sph::WallSet> sets = wall->wall_sets();
-    for (std::size_t k = 0; k < sets.size(); ++k) {
+    // The fluid and each wall set in the types they are kept in (one instantiation per pair of types).
+    for (std::size_t k = 0; k < sets.size(); ++k) with_fluid_fields(world.fluid, [&](auto f) {
+      using Real = typename decltype(f.rho)::value_type;
       const sph::WallSet& set = sets[k];
-      const WallPass pass{fluid,      rates,   visc_max_by_thread_.data(), set, world.kernel, material_mu_.data(),
-                          continuity, period_, world.fluid.owned_size()};
-      sph::Neighbours viscous_nb = set.fields;
-      viscous_nb.velocity = set.viscous_velocity;
-      const sph::PressureForce pressure{set.fields};
-      const sph::Continuity cont{set.fields};  // its rate is added only with continuity density
-      pairs += with_viscosity_term<Neighbour::wall>(viscosity, set.fields, viscous_nb, [&](const auto& viscous) {
-        if (!set.rigid_body) return pass.against_walls(pressure, viscous, cont);
-        std::uint64_t body_pairs = 0;
-        const BodyReaction reaction = pass.against_body(body_pairs, pressure, viscous, cont);
-        wall->take_reaction(world, k, reaction.force, reaction.torque);
-        return body_pairs;
+      const WallPass<Real> pass{fluid,      f.neighbours(), {f.a.data(), f.drho.data()}, visc_max_by_thread_.data(),
+                                set,        world.kernel,   material_mu_.data(),         continuity,
+                                period_,    world.fluid.owned_size()};
+      set.visit_fields([&](const auto& walls, const auto* viscous_velocity) {
+        auto viscous_nb = walls;
+        viscous_nb.velocity = viscous_velocity;
+        const sph::PressureForce pressure{walls};
+        const sph::Continuity cont{walls};  // its rate is added only with continuity density
+        pairs += with_viscosity_term<Neighbour::wall>(viscosity, walls, viscous_nb, [&](const auto& viscous) {
+          if (!set.rigid_body) return pass.against_walls(pressure, viscous, cont);
+          std::uint64_t body_pairs = 0;
+          const BodyReaction reaction = pass.against_body(body_pairs, pressure, viscous, cont);
+          wall->take_reaction(world, k, reaction.force, reaction.torque);
+          return body_pairs;
+        });
       });
-    }
+    });
     pairs += wall->add_direct_forces(world, fluid, rates);
   }
   for (std::size_t t = 0; t < visc_max_by_thread_.size(); t += thread_stride)
@@ -147,17 +180,19 @@ std::uint64_t WcsphStage::wall_passes(World& world) {
 }
 
 std::uint64_t WcsphStage::wall_density_passes(World& world) {
-  FluidFields f(world.fluid);
-  const std::span<const Vec3> x = f.x;
+  const std::span<const Vec3> x = world.fluid.position();
   std::uint64_t pairs = 0;
   for (sph::SphBoundary* wall : walls_) {
     wall->refresh_wall_sets(world);
-    for (const sph::WallSet& set : wall->wall_sets()) {
-      auto start = [](Index) { return sph::DensitySums{}; };
-      auto finish = [&](Index i, const sph::DensitySums& sum) { f.rho[i] += sum.rho_sum; };
-      pairs += sph::pair_pass(world.fluid.owned_size(), x, *set.cells, world.kernel, sph::other_set, start, finish,
-                              sph::DensitySum{set.fields.mass});
-    }
+    for (const sph::WallSet& set : wall->wall_sets())
+      world.fluid.visit_scalar("density", [&](auto rho) {
+        set.visit_fields([&](const auto& walls, const auto*) {
+          auto start = [](Index) { return sph::DensitySums{}; };
+          auto finish = [&](Index i, const sph::DensitySums& sum) { rho[i] += sum.rho_sum; };
+          pairs += sph::pair_pass(world.fluid.owned_size(), x, *set.cells, world.kernel, sph::other_set, start,
+                                  finish, sph::DensitySum{walls.mass});
+        });
+      });
   }
   return pairs;
 }

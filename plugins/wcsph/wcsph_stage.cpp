@@ -102,9 +102,13 @@ void WcsphStage::setup(World& world) {
     params_.fail("viscosity", "'laplacian' needs a kernel with a Laplacian; allowed with kernel 'muller'");
 
   ParticleStore& s = world.fluid;
-  for (const FieldInfo* info : {&field_velocity, &field_density, &field_pressure, &field_mass, &field_sound_speed,
-                                &field_acceleration, &field_density_rate})
-    s.require(*info);
+  const bool single = single_fluid_allowed(world);
+  for (const FieldInfo* info : fluid_fields_in_float) {
+    FieldInfo field = *info;
+    field.single_when_mixed = single;
+    s.require(field);
+  }
+  keep_fluid_fields_alike(s);
   if (integrator_ == Integrator::symplectic || integrator_ == Integrator::predictor_corrector)
     for (const FieldInfo* info : {&field_position_n, &field_velocity_n, &field_density_n}) s.require(*info);
   if (integrator_ == Integrator::verlet)
@@ -205,22 +209,49 @@ void WcsphStage::setup(World& world) {
     wall->bind(world, settings_);
   }
 
-  if (integrator_ == Integrator::verlet) {
-    s.visit_vector("velocity_prev", [&](auto v_prev) { std::ranges::copy(s.vector("velocity"), v_prev.begin()); });
-    s.visit_scalar("density_prev", [&](auto rho_prev) {
-      std::ranges::transform(s.scalar("density"), rho_prev.begin(), [](double rho) {
-        return static_cast<typename decltype(rho_prev)::value_type>(rho);
+  if (integrator_ == Integrator::verlet)
+    with_fluid_fields(s, [&](auto f) {
+      s.visit_vector("velocity_prev", [&](auto v_prev) {
+        std::ranges::transform(f.v, v_prev.begin(), [](Vec3 v) { return typename decltype(v_prev)::value_type(v); });
+      });
+      s.visit_scalar("density_prev", [&](auto rho_prev) {
+        std::ranges::transform(f.rho, rho_prev.begin(), [](double rho) {
+          return static_cast<typename decltype(rho_prev)::value_type>(rho);
+        });
       });
     });
-  }
   verlet_counter_ = 0;
   rates_valid_ = false;
   worst_deviation_ = max_density_deviation(world);
   worst_deviation_time_ = world.time;
 }
 
+// Velocity, density, pressure, sound speed and mass in float, in a scene of
+// mixed precision where everything that reads the fluid reads float: every
+// wall model says so (SphBoundary::reads_single_fluid), and there is no
+// pair-term plugin (it sees the FluidView in double) and no three-pass
+// viscosity (its passes and the rheologies' batch calls read double).
+bool WcsphStage::single_fluid_allowed(const World& world) const {
+  if (!world.fluid.mixed_precision() || !world.pair_terms.empty()) return false;
+  if (viscosity_ == ViscosityModel::laminar) {
+    if (smagorinsky_) return false;
+    for (const Body& body : world.bodies) {
+      if (body.kind != BodyKind::fluid || body.material < 0) continue;
+      const Material& m = world.materials[body.material];
+      if (m.rheology && !m.rheology->is_newtonian()) return false;
+    }
+  }
+  for (const Body& body : world.bodies) {
+    if (!body.boundary) continue;
+    const auto* wall = dynamic_cast<const sph::SphBoundary*>(body.boundary);
+    if (!wall || !wall->reads_single_fluid()) return false;
+  }
+  return true;
+}
+
 StageParts WcsphStage::parts(const World& world) const {
   StageParts parts{{}, {}, {"velocity", "density", "pressure", "mass"}};
+  if (single_fluid_allowed(world)) parts.single_body_fields = parts.body_fields;
   for (const Body& body : world.bodies)
     if (body.kind == BodyKind::block && body.boundary) parts.needs = {"blocks"};
   return parts;
@@ -240,14 +271,14 @@ double WcsphStage::stable_time_step(World& world) {
   if (!rates_current(world)) compute_rates(world);
   // The bound combines maxima that may sit on different ranks: each is taken over all of them.
   const std::size_t owned = world.fluid.owned_size();
-  const auto a = world.fluid.vector("acceleration");
-  const auto c = world.fluid.scalar("sound_speed");
   double a_max = 0.0, c_max = 0.0, visc_max = std::max(fluid_visc_max_, rates_visc_max_);
+  with_fluid_fields(world.fluid, [&](auto f) {
 #pragma omp parallel for schedule(static) reduction(max : a_max, c_max) if (owned >= 4096)
-  for (std::size_t i = 0; i < owned; ++i) {
-    a_max = std::max(a_max, norm2(a[i]));
-    c_max = std::max(c_max, c[i]);
-  }
+    for (std::size_t i = 0; i < owned; ++i) {
+      a_max = std::max(a_max, norm2(f.a[i]));
+      c_max = std::max(c_max, static_cast<double>(f.c[i]));
+    }
+  });
   const Parallel& ranks = world.parallel();
   a_max = std::sqrt(ranks.max(a_max));
   c_max = ranks.max(c_max);
@@ -285,15 +316,16 @@ void WcsphStage::advance(World& world, double dt) {
 }
 
 double WcsphStage::max_density_deviation(const World& world) const {
-  const auto rho = world.fluid.scalar("density");
   const auto mat = world.fluid.material();
   const std::size_t owned = world.fluid.owned_size();
   double dev = 0.0;
+  world.fluid.visit_scalar("density", [&](auto rho) {
 #pragma omp parallel for schedule(static) reduction(max : dev) if (owned >= 4096)
-  for (std::size_t i = 0; i < owned; ++i) {
-    const double rho0 = material_rho0_[mat[i]];
-    dev = std::max(dev, std::abs(rho[i] / rho0 - 1.0));
-  }
+    for (std::size_t i = 0; i < owned; ++i) {
+      const double rho0 = material_rho0_[mat[i]];
+      dev = std::max(dev, std::abs(rho[i] / rho0 - 1.0));
+    }
+  });
   return dev;
 }
 

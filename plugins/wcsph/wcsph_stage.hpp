@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "talus/neighbour_grid.hpp"
+#include "talus/scratch_column.hpp"
 #include "talus/sph/boundary_pass.hpp"
 #include "talus/sph/fluid_terms.hpp"
 #include "talus/sph/mutual_pass.hpp"
@@ -71,6 +72,8 @@ class WcsphStage final : public Stage {
   double worst_density_deviation_time() const { return worst_deviation_time_; }
 
  private:
+  // Whether the fluid's velocity, density, pressure, sound speed and mass may be kept in float.
+  bool single_fluid_allowed(const World& world) const;
   void update_pressure(World& world);
   void refresh_halos(World& world);
   // Three-pass non-Newtonian viscosity (DESIGN.md), only when per_particle_viscosity_:
@@ -91,6 +94,8 @@ class WcsphStage final : public Stage {
   std::uint64_t wall_density_passes(World& world);
   // The fluid as the wall models and pair terms see it, for this evaluation.
   sph::FluidView fluid_view(World& world) const;
+  // The fluid's rates as the wall models and pair terms add to them.
+  sph::FluidRates fluid_rates(World& world);
   void density_summation(World& world);
   bool rates_current(const World& world) const;
   void step_euler(World& world, double dt);
@@ -127,7 +132,7 @@ class WcsphStage final : public Stage {
   sph::FluidSettings settings_;
   NeighbourGrid cells_;
   Vec3 period_;  // domain length on periodic axes (lever arms of rigid-body wall sets)
-  std::vector<double> inv_rho_;  // scratch, refilled every evaluation (grow only)
+  ScratchColumn inv_rho_;  // 1/rho per fluid particle, refilled every evaluation (grow only)
   // The largest |v_ij.x_ij|/(r^2+eta^2), 1/s, of the fluid pass and of the
   // wall passes and pair terms (FluidRates::visc_max).
   double fluid_visc_max_ = 0.0, rates_visc_max_ = 0.0;

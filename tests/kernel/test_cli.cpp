@@ -188,12 +188,17 @@ TEST(Cli, MixedPrecisionListsItsFloatFieldsAndRestartsBitForBit) {
   const auto full = run_command(std::string(TALUS_EXE) + " run " + scene + " --threads 1 --out " + a + " --summary " +
                                 a + "/summary.json");
   ASSERT_EQ(full.exit_code, 0) << full.output;
-  EXPECT_NE(full.output.find("talus: mixed precision: in float: fluid velocity_n, density_n; walls none"),
+  // Dynamic boundary particles read a fluid in float and keep their walls in float.
+  const std::string fluid = "velocity, density, pressure, mass, sound_speed, acceleration, density_rate, velocity_n, "
+                            "density_n";
+  const std::string walls = "velocity, density, pressure, mass, sound_speed, density_rate, density_n";
+  EXPECT_NE(full.output.find("talus: mixed precision: in float: fluid " + fluid + "; walls " + walls),
             std::string::npos)
       << full.output;
   const auto summary = nlohmann::json::parse(read_file(a + "/summary.json"));
   EXPECT_EQ(summary["precision"]["mode"], "mixed");
-  EXPECT_EQ(summary["precision"]["fluid_in_float"], "velocity_n, density_n");
+  EXPECT_EQ(summary["precision"]["fluid_in_float"], fluid);
+  EXPECT_EQ(summary["precision"]["walls_in_float"], walls);
   expect_restart_ends_on_the_same_checkpoint(scene, a, b);
 }
 
