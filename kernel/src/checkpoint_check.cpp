@@ -89,12 +89,12 @@ struct Checker {
       }
     }
     for (const auto& f : s.fields()) {
-      if (f.type == FieldType::scalar || f.type == FieldType::scalar_f32)
+      if (double_type(f.type) == FieldType::scalar)
         s.visit_scalar(f.name, [&](auto v) {
           for (std::size_t i = 0; i < n; ++i)
             if (!std::isfinite(v[i])) fail(particle(i) + " has non-finite " + f.name + " (" + text(v[i]) + ")");
         });
-      else if (f.type == FieldType::vector || f.type == FieldType::vector_f32)
+      else if (double_type(f.type) == FieldType::vector)
         s.visit_vector(f.name, [&](auto v) {
           for (std::size_t i = 0; i < n; ++i)
             if (!is_finite(v[i])) fail(particle(i) + " has a non-finite " + f.name);

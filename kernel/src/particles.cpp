@@ -32,11 +32,6 @@ FieldType stored_type(const FieldInfo& info, bool mixed) {
     default: throw std::logic_error("field '" + info.name + "': only a scalar or vector field can be kept in float");
   }
 }
-
-// The double-precision type a field of this type has outside mixed precision.
-FieldType double_type(FieldType type) {
-  return type == FieldType::scalar_f32 ? FieldType::scalar : type == FieldType::vector_f32 ? FieldType::vector : type;
-}
 }  // namespace
 
 ParticleStore::ParticleStore() {

@@ -45,7 +45,7 @@ double peak_memory_mib() {
 std::string fields_in_float(const ParticleStore& store) {
   std::vector<std::string> names;
   for (const FieldInfo& f : store.fields())
-    if (f.type == FieldType::scalar_f32 || f.type == FieldType::vector_f32) names.push_back(f.name);
+    if (is_single(f.type)) names.push_back(f.name);
   return names.empty() ? "none" : text::join(names);
 }
 

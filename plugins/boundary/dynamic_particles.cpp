@@ -46,10 +46,7 @@ const FieldInfo* const wall_fields_in_float[] = {&wall_velocity,     &wall_densi
 // The seven in one type; with the mirrored viscous velocity, eight.
 void keep_wall_fields_alike(ParticleStore& s) {
   std::size_t in_float = 0, fields = std::size(wall_fields_in_float);
-  auto count = [&](const FieldInfo& f) {
-    const FieldType type = s.info(f.name).type;
-    in_float += type == FieldType::scalar_f32 || type == FieldType::vector_f32;
-  };
+  auto count = [&](const FieldInfo& f) { in_float += is_single(s.info(f.name).type); };
   for (const FieldInfo* f : wall_fields_in_float) count(*f);
   if (s.has(wall_viscous_velocity.name)) {
     count(wall_viscous_velocity);

@@ -73,10 +73,7 @@ inline const FieldInfo* const fluid_fields_in_float[] = {&field_velocity,    &fi
 // require() in double), the others are widened too.
 inline void keep_fluid_fields_alike(ParticleStore& s) {
   std::size_t in_float = 0;
-  for (const FieldInfo* f : fluid_fields_in_float) {
-    const FieldType type = s.info(f->name).type;
-    in_float += type == FieldType::scalar_f32 || type == FieldType::vector_f32;
-  }
+  for (const FieldInfo* f : fluid_fields_in_float) in_float += is_single(s.info(f->name).type);
   if (in_float > 0 && in_float < std::size(fluid_fields_in_float))
     for (const FieldInfo* f : fluid_fields_in_float) s.require(*f);
 }

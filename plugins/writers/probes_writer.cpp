@@ -219,13 +219,13 @@ void ProbesWriter::resolve_columns(const World& world) {
   for (const auto& name : fields) {
     if (fluid.has(name)) {
       const auto& info = fluid.info(name);
-      if (info.type == FieldType::scalar) {
+      if (double_type(info.type) == FieldType::scalar) {  // in double or float
         per_point.push_back({0, name, false, 0});
         suffix.push_back(name);
         unit.push_back(info.unit);
         continue;
       }
-      if (info.type == FieldType::vector) {
+      if (double_type(info.type) == FieldType::vector) {
         for (int c = 0; c < world.dim; ++c) {
           per_point.push_back({0, name, true, c});
           suffix.push_back(name + "_" + kAxis[c]);
@@ -243,7 +243,7 @@ void ProbesWriter::resolve_columns(const World& world) {
     if (tail == "y") component = 1;
     if (tail == "z" && world.dim == 3) component = 2;
     if (tail == "mag") component = 3;
-    if (component < 0 || !fluid.has(base) || fluid.info(base).type != FieldType::vector)
+    if (component < 0 || !fluid.has(base) || double_type(fluid.info(base).type) != FieldType::vector)
       params_.fail("fields", "no particle field or vector component '" + name +
                                  "' in this scene; known fields: " + field_names(fluid));
     per_point.push_back({0, base, true, component});

@@ -115,8 +115,8 @@ void build_vtu(std::string& out, const ParticleStore& store, const std::vector<F
 
   std::string scalars, vectors;
   for (const auto& f : fields) {
-    const bool scalar = f.type == FieldType::scalar || f.type == FieldType::scalar_f32;
-    const bool vector = f.type == FieldType::vector || f.type == FieldType::vector_f32;
+    const bool scalar = double_type(f.type) == FieldType::scalar;
+    const bool vector = double_type(f.type) == FieldType::vector;
     if (scalar && scalars.empty()) scalars = f.name;
     if (vector && vectors.empty()) vectors = f.name;
   }

@@ -63,14 +63,15 @@ std::size_t column(const Csv& csv, const std::string& name) {
 double pressure_at(const Vec3& x) { return 1000.0 + 200.0 * x.x - 50.0 * x.y + 30.0 * x.z; }
 Vec3 velocity_at(const Vec3& x) { return {1.0 + 2.0 * x.x, 3.0 * x.y - x.z, -x.x + 0.5}; }
 
+// In the type the fields are kept in (float in a store in mixed precision).
 void set_linear_fields(World& w) {
-  auto p = w.fluid.scalar("pressure");
-  auto v = w.fluid.vector("velocity");
   auto x = w.fluid.position();
-  for (std::size_t i = 0; i < w.fluid.size(); ++i) {
-    p[i] = pressure_at(x[i]);
-    v[i] = velocity_at(x[i]);
-  }
+  w.fluid.visit_scalar("pressure", [&](auto p) {
+    for (std::size_t i = 0; i < w.fluid.size(); ++i) p[i] = pressure_at(x[i]);
+  });
+  w.fluid.visit_vector("velocity", [&](auto v) {
+    for (std::size_t i = 0; i < w.fluid.size(); ++i) v[i] = velocity_at(x[i]);
+  });
 }
 
 std::string points_json(const std::vector<Vec3>& points, int dim) {
@@ -122,6 +123,42 @@ TEST(ProbesWriter, ShepardOfALinearFieldIsExactAtInteriorSymmetryPoints) {
   // Control: half a support from the edge the kernel is truncated and the
   // Shepard average is biased inwards by O(h b): the test above can fail.
   EXPECT_GT(std::abs(row[column(csv, "P5_pressure")] - pressure_at(points[4])), 1.0);
+}
+
+// A fluid kept in float (mixed precision) is read in the type it is kept in.
+// The probes give the values of the same fluid in double to the rounding of
+// the fields to float: 2^-24 of the largest value an average weighs (1240 Pa,
+// 4 m/s), so 2e-4 Pa and 1e-6 m/s with a margin; the mass integral is the
+// sum of the rounded masses, 2^-24 relative.
+TEST(ProbesWriter, ReadsAFluidKeptInFloat) {
+  auto probe = [](bool mixed) {
+    TempDir dir(mixed ? "probes-float" : "probes-double");
+    World w;
+    w.fluid.set_mixed_precision(mixed);
+    w.lo = {0, 0, 0};
+    w.hi = {1.2, 1.2, 1.2};
+    test::fill_lattice(w, 3, w.lo, 12, 12, 12, 0.1);
+    set_linear_fields(w);
+    EXPECT_EQ(is_single(w.fluid.info("pressure").type), mixed);
+    EXPECT_EQ(is_single(w.fluid.info("velocity").type), mixed);
+    writers::ProbesWriter writer(params_from_json(
+        writers::ProbesWriter::describe(),
+        R"({"points": [[0.6, 0.6, 0.6], [0.35, 0.6, 0.45]], "fields": ["pressure", "velocity"], "integrals": ["mass"]})"));
+    writer.open(test::context_for(dir.str()), w);
+    writer.write(w);
+    writer.close(w);
+    return read_csv(dir.file("scene_probes.csv"));
+  };
+  const Csv d = probe(false), f = probe(true);
+  ASSERT_EQ(d.header, f.header);
+  ASSERT_EQ(f.rows.size(), 1u);
+  for (const std::string p : {"P1", "P2"}) {
+    EXPECT_NEAR(f.rows[0][column(f, p + "_pressure")], d.rows[0][column(d, p + "_pressure")], 2e-4) << p;
+    for (const char* axis : {"_velocity_x", "_velocity_y", "_velocity_z"})
+      EXPECT_NEAR(f.rows[0][column(f, p + axis)], d.rows[0][column(d, p + axis)], 1e-6) << p << axis;
+  }
+  const double mass = d.rows[0][column(d, "mass")];
+  EXPECT_NEAR(f.rows[0][column(f, "mass")], mass, mass * std::ldexp(1.0, -24));
 }
 
 TEST(ProbesWriter, WaveGaugeFindsAFlatFreeSurface) {

@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -28,10 +29,11 @@ class TestWendlandC2 final : public SmoothingKernel {
 };
 
 inline void require_host_fields(ParticleStore& s) {
-  s.require({"velocity", FieldType::vector, "m/s", true, true});
-  s.require({"density", FieldType::scalar, "kg/m^3", true, true});
-  s.require({"pressure", FieldType::scalar, "Pa", true, true});
-  s.require({"mass", FieldType::scalar, "kg", true, true});
+  // In float where the store is in mixed precision, as the host keeps them for a wcsph fluid.
+  s.require({"velocity", FieldType::vector, "m/s", true, true, true});
+  s.require({"density", FieldType::scalar, "kg/m^3", true, true, true});
+  s.require({"pressure", FieldType::scalar, "Pa", true, true, true});
+  s.require({"mass", FieldType::scalar, "kg", true, true, true});
 }
 
 // A dim-D lattice of nx * ny (* nz) particles at (i + 1/2) dp from `lo`,
@@ -46,16 +48,13 @@ inline void fill_lattice(World& w, int dim, Vec3 lo, int nx, int ny, int nz, dou
   const std::size_t n = static_cast<std::size_t>(nx) * ny * nz;
   const std::size_t first = w.fluid.append(n);
   auto pos = w.fluid.position();
-  auto rho = w.fluid.scalar("density");
-  auto m = w.fluid.scalar("mass");
   std::size_t i = first;
   for (int c = 0; c < nz; ++c)
     for (int b = 0; b < ny; ++b)
-      for (int a = 0; a < nx; ++a, ++i) {
+      for (int a = 0; a < nx; ++a, ++i)
         pos[i] = lo + Vec3{(a + 0.5) * dp, (b + 0.5) * dp, dim == 3 ? (c + 0.5) * dp : 0.0};
-        rho[i] = rho0;
-        m[i] = rho0 * std::pow(dp, dim);
-      }
+  w.fluid.visit_scalar("density", [&](auto rho) { std::fill(rho.begin() + first, rho.end(), rho0); });
+  w.fluid.visit_scalar("mass", [&](auto m) { std::fill(m.begin() + first, m.end(), rho0 * std::pow(dp, dim)); });
 }
 
 inline OutputContext context_for(const std::string& dir, bool resume = false) {

@@ -40,6 +40,15 @@ enum class FieldType { scalar, vector, integer, id, scalar_f32, vector_f32 };
 // The type's name, as errors and checkpoints print it.
 TALUS_API const char* field_type_name(FieldType type);
 
+// The type a field of this type has in double (scalar for scalar_f32, vector
+// for vector_f32, the type itself otherwise): what the field is, whichever
+// precision it is stored in.
+constexpr FieldType double_type(FieldType type) {
+  return type == FieldType::scalar_f32 ? FieldType::scalar : type == FieldType::vector_f32 ? FieldType::vector : type;
+}
+// Whether a field of this type is kept in float.
+constexpr bool is_single(FieldType type) { return double_type(type) != type; }
+
 // What the host and the writers need to know about a field.
 struct FieldInfo {
   std::string name;
