@@ -226,10 +226,10 @@ void WcsphStage::setup(World& world) {
   worst_deviation_time_ = world.time;
 }
 
-// Velocity, density, pressure, sound speed and mass in float, in a scene of
-// mixed precision where everything that reads the fluid reads float: every
-// wall model says so (SphBoundary::reads_single_fluid), and there is no
-// pair-term plugin (it sees the FluidView in double) and no three-pass
+// The fluid's state and rates (fluid_fields_in_float) in float, in a scene
+// of mixed precision where everything that reads the fluid reads float:
+// every wall model says so (SphBoundary::reads_single_fluid), and there is
+// no pair-term plugin (it sees the FluidView in double) and no three-pass
 // viscosity (its passes and the rheologies' batch calls read double).
 bool WcsphStage::single_fluid_allowed(const World& world) const {
   if (!world.fluid.mixed_precision() || !world.pair_terms.empty()) return false;

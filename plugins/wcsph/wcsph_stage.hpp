@@ -72,7 +72,7 @@ class WcsphStage final : public Stage {
   double worst_density_deviation_time() const { return worst_deviation_time_; }
 
  private:
-  // Whether the fluid's velocity, density, pressure, sound speed and mass may be kept in float.
+  // Whether the fluid's fields may be kept in float (fluid_fields_in_float).
   bool single_fluid_allowed(const World& world) const;
   void update_pressure(World& world);
   void refresh_halos(World& world);
