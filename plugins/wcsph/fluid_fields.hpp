@@ -20,10 +20,6 @@ inline const FieldInfo field_density_rate{"density_rate", FieldType::scalar, "kg
 // Three-pass non-Newtonian / turbulent viscosity (only registered when used).
 inline const FieldInfo field_shear_rate{"shear_rate", FieldType::scalar, "1/s", true, false};
 inline const FieldInfo field_mu_eff{"mu_eff", FieldType::scalar, "Pa s", true, false};
-// These seven go to float in a scene of mixed precision when every reader of
-// the fluid reads float (WcsphStage::single_fluid_allowed): their FieldInfo
-// say double, the stage sets single_when_mixed on its copies
-// (fluid_fields_in_float below).
 // Two-stage integrators: the state at t^n, kept within one step only.
 // Velocity and density may be kept in float (the scene's "precision": "mixed"):
 // the step adds to them a change of order dt times the rate, and rounding them
@@ -64,7 +60,9 @@ using FluidFields = FluidFieldsOf<double>;
 // Whether the fluid's seven fields are kept in float.
 inline bool fluid_in_float(const ParticleStore& s) { return s.info("density").type == FieldType::scalar_f32; }
 
-// The fields that go to float together.
+// The fields that go to float together, in a scene of mixed precision where
+// every reader of the fluid reads float (WcsphStage::single_fluid_allowed):
+// their FieldInfo say double, the stage sets single_when_mixed on its copies.
 inline const FieldInfo* const fluid_fields_in_float[] = {&field_velocity,    &field_density,      &field_pressure,
                                                          &field_mass,        &field_sound_speed,  &field_acceleration,
                                                          &field_density_rate};

@@ -74,7 +74,7 @@ struct FluidView {
   // In a scene of mixed precision whose wall models all read a fluid in float
   // (SphBoundary::reads_single_fluid), the stage keeps velocity, density,
   // pressure, sound speed, mass and 1/rho in float: then `single` points at
-  // them (material and viscosity too) and the spans of those six are empty.
+  // them (and at the materials) and the spans of those six are empty.
   NeighboursF single;
 
   bool in_single() const { return single.density != nullptr; }
