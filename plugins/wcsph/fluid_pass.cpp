@@ -5,6 +5,7 @@
 // once per evaluation, into one template instantiation; nothing in the pair
 // loop branches on them.
 #include <cmath>
+#include <type_traits>
 
 #include "fluid_fields.hpp"
 #include "fluid_sums.hpp"
@@ -20,18 +21,20 @@ namespace talus::wcsph {
 
 namespace {
 
-template <class Real>
+// NB: sph::NeighbourFields<Real>, or UniformNeighbourFields<Real> for a fluid
+// of one material and one mass.
+template <class Real, class NB>
 struct PassContext {
   World& world;
   const FluidFieldsOf<Real>& f;
   const NeighbourGrid& cells;
   const double* mu;  // per material
   Vec3 gravity;
-  sph::NeighbourFields<Real> nb;  // the fluid's fields, with 1/rho
+  NB nb;  // the fluid's fields, with 1/rho
 };
 
-template <class Real, class... Terms>
-sph::MutualPassResult run_force_pass(const PassContext<Real>& ctx, const Terms&... terms) {
+template <class Real, class NB, class... Terms>
+sph::MutualPassResult run_force_pass(const PassContext<Real, NB>& ctx, const Terms&... terms) {
   const FluidFieldsOf<Real>& f = ctx.f;
   const double* mu = ctx.mu;
   const Vec3 g = ctx.gravity;
@@ -54,10 +57,9 @@ sph::MutualPassResult run_force_pass(const PassContext<Real>& ctx, const Terms&.
                                terms...);
 }
 
-template <class Real, class... Terms>
-sph::MutualPassResult with_density_terms(const PassContext<Real>& ctx, DensityMode density, Diffusion diffusion,
+template <class Real, class NB, class... Terms>
+sph::MutualPassResult with_density_terms(const PassContext<Real, NB>& ctx, DensityMode density, Diffusion diffusion,
                                          double delta_h_c0, const Terms&... terms) {
-  using NB = sph::NeighbourFields<Real>;
   const NB nb = ctx.nb;
   if (density == DensityMode::summation) return run_force_pass(ctx, terms...);
   const sph::Continuity cont{nb};
@@ -69,6 +71,20 @@ sph::MutualPassResult with_density_terms(const PassContext<Real>& ctx, DensityMo
       return run_force_pass(ctx, terms..., cont, sph::DensityDiffusion<true, NB>{nb, delta_h_c0, ctx.gravity});
   }
   return {};
+}
+
+// Whether every row of the fluid (its halo too) has the mass and the material
+// of the first.
+template <class Real>
+bool one_mass_and_material(const FluidFieldsOf<Real>& f) {
+  const std::size_t n = f.m.size();
+  if (n == 0) return false;
+  const Real m0 = f.m[0];
+  const std::int32_t mat0 = f.mat[0];
+  std::size_t other = 0;
+#pragma omp parallel for schedule(static) reduction(+ : other) if (n >= sph::parallel_min)
+  for (std::size_t i = 0; i < n; ++i) other += (f.m[i] != m0) | (f.mat[i] != mat0);
+  return other == 0;
 }
 
 }  // namespace
@@ -92,15 +108,26 @@ std::uint64_t WcsphStage::fluid_pass(World& world) {
     nb.inv_density = inv_rho_.as<Real>().data();
     // The three-pass viscosity's force pass reads mu_eff of both particles; start() then takes mu_eff[i].
     if (per_particle_viscosity_) nb.viscosity = world.fluid.scalar("mu_eff").data();
-    const PassContext<Real> ctx{world,         f, cells_, per_particle_viscosity_ ? nullptr : material_mu_.data(),
-                                world.gravity, nb};
-    const sph::PressureForce pressure{nb};
     const double delta_h_c0 = delta_ * h_ * c0_max_;
     sph::MutualPassResult passed;
-    with_viscosity_term<Neighbour::fluid>(viscosity_settings(world), nb, nb, [&](const auto& viscous) {
-      passed = with_density_terms(ctx, density_, diffusion_, delta_h_c0, pressure, viscous);
-      return passed.evaluations;
-    });
+    auto run = [&](const auto& fields) {
+      const PassContext<Real, std::decay_t<decltype(fields)>> ctx{
+          world, f, cells_, per_particle_viscosity_ ? nullptr : material_mu_.data(), world.gravity, fields};
+      const sph::PressureForce pressure{fields};
+      with_viscosity_term<Neighbour::fluid>(viscosity_settings(world), fields, fields, [&](const auto& viscous) {
+        passed = with_density_terms(ctx, density_, diffusion_, delta_h_c0, pressure, viscous);
+        return passed.evaluations;
+      });
+    };
+    // The three-pass viscosity reads mu_eff per particle: the general fields.
+    if (!per_particle_viscosity_ && one_mass_and_material(f)) {
+      sph::UniformNeighbourFields<Real> uniform{nb};
+      uniform.mass_of_all = f.m[0];
+      uniform.material_of_all = f.mat[0];
+      run(uniform);
+    } else {
+      run(nb);
+    }
     return passed;
   });
   fluid_visc_max_ = result.visc_max;

@@ -304,6 +304,42 @@ TEST_P(MutualPass, SameBitsOnOneAndTwoThreads) {
   EXPECT_EQ(one.visc_max, two.visc_max);
 }
 
+// A fluid of one material and one mass: the terms on UniformNeighbourFields
+// (which read neither field per pair) give the rates of the fields bit for
+// bit, every term of the fluid-fluid pass.
+TEST_P(MutualPass, OneMaterialAndMassGiveTheSameBitsWithoutReadingThem) {
+  for (std::size_t i = 0; i < cloud.x.size(); ++i) {
+    cloud.m[i] = cloud.m[0];
+    cloud.mat[i] = 1;
+  }
+  use_material_viscosities();
+  const sph::Neighbours fields = cloud.nb();
+  sph::UniformNeighbourFields<double> uniform{fields};
+  uniform.mass_of_all = cloud.m[0];
+  uniform.material_of_all = 1;
+  uniform.mass = nullptr;  // a read of either would crash
+  uniform.material = nullptr;
+  const double h = kernel.h(), eta2 = sph::laminar_eta2(h), delta_h_c0 = 0.1 * h * 30.0;
+  const Vec3 g{0, -9.81, 0};
+  auto same = [&](const auto& on_fields, const auto& on_uniform) {
+    const Rates want = mutual(cloud, grid, kernel, on_fields);
+    ASSERT_GT(largest(want.acc) + largest(want.drho), 0.0);
+    const Rates got = mutual(cloud, grid, kernel, on_uniform);
+    for (std::size_t i = 0; i < cloud.x.size(); ++i) {
+      ASSERT_EQ(got.acc[i], want.acc[i]) << i;
+      ASSERT_EQ(got.drho[i], want.drho[i]) << i;
+    }
+    EXPECT_EQ(got.visc_max, want.visc_max);
+  };
+  same(sph::PressureForce{fields}, sph::PressureForce{uniform});
+  same(sph::ArtificialViscosity{fields, 0.1 * h}, sph::ArtificialViscosity{uniform, 0.1 * h});
+  same(sph::LaminarViscosity<false>{fields, cloud.mu_of_material, eta2},
+       sph::LaminarViscosity<false, decltype(uniform)>{uniform, cloud.mu_of_material, eta2});
+  same(sph::Continuity{fields}, sph::Continuity{uniform});
+  same(sph::DensityDiffusion<true>{fields, delta_h_c0, g},
+       sph::DensityDiffusion<true, decltype(uniform)>{uniform, delta_h_c0, g});
+}
+
 // On several MPI ranks the last rows are halo copies, whose rates are not
 // wanted: the pass skips the pairs of two of them. The owned rows' rates are
 // those of the whole pass bit for bit (every pair with an owned row is still

@@ -3,19 +3,24 @@
 // vectorisation report. TERMS 1: the dam break's set (pressure, artificial
 // viscosity, continuity, Fourtakas diffusion); TERMS 2: laminar viscosity
 // with continuity and Molteni diffusion; TERMS 3: the dam break's set on a
-// fluid in float (mixed precision).
+// fluid in float (mixed precision); TERMS 4: the same on a fluid of one
+// material and one mass (sph::UniformNeighbourFields), as the dam break runs.
 #include "fluid_sums.hpp"
 #include "talus/sph/fluid_terms.hpp"
 #include "talus/sph/mutual_pass.hpp"
 
 namespace talus {
 
-#if TERMS == 3
+#if TERMS >= 3
 using Stored = float;
 #else
 using Stored = double;
 #endif
+#if TERMS == 4
+using Fields = sph::UniformNeighbourFields<Stored>;
+#else
 using Fields = sph::NeighbourFields<Stored>;
+#endif
 
 // With the wcsph stage's own i-state and sums, as its force pass has them.
 void evaluate_lanes(sph::PairLanes& lanes, const KernelTable& kernel, wcsph::FluidSums& sums,
