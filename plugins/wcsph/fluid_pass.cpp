@@ -87,6 +87,20 @@ bool one_mass_and_material(const FluidFieldsOf<Real>& f) {
   return other == 0;
 }
 
+// The fluid's fields side by side, for the mutual pass to gather (float only).
+const sph::NeighbourRecord* fill_records(const FluidFieldsOf<float>& f, const float* inv_rho,
+                                         std::vector<sph::NeighbourRecord>& records) {
+  const std::size_t n = f.rho.size();
+  records.resize(n);
+  sph::NeighbourRecord* r = records.data();
+#pragma omp parallel for schedule(static) if (n >= sph::parallel_min)
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3f v = f.v[i];
+    r[i] = {v.x, v.y, v.z, f.rho[i], f.p[i], f.c[i], inv_rho[i], 0.0f};
+  }
+  return r;
+}
+
 }  // namespace
 
 // Per-particle reciprocals once per evaluation instead of divisions per pair.
@@ -124,7 +138,13 @@ std::uint64_t WcsphStage::fluid_pass(World& world) {
       sph::UniformNeighbourFields<Real> uniform{nb};
       uniform.mass_of_all = f.m[0];
       uniform.material_of_all = f.mat[0];
-      run(uniform);
+      if constexpr (std::is_same_v<Real, float>) {
+        sph::GatheredNeighbourFields gathered{uniform};
+        gathered.record = fill_records(f, nb.inv_density, records_);
+        run(gathered);
+      } else {
+        run(uniform);
+      }
     } else {
       run(nb);
     }

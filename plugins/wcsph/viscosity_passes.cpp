@@ -64,7 +64,7 @@ struct ViscousSupport {
   double eta2 = 0.0;  // laminar_eta2(h), as the force pass
   template <class S>
   TALUS_PAIR_INLINE void pair(const sph::Pair& q, S& s) const {
-    s.support -= sph::mass_of(nb, q.j) * nb.inv_density[q.j] * sph::laminar_weight(q, eta2);  // dW/dr <= 0
+    s.support -= sph::mass_at(nb, q) * sph::inv_density_at(nb, q) * sph::laminar_weight(q, eta2);  // dW/dr <= 0
   }
 };
 }  // namespace

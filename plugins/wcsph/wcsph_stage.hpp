@@ -133,6 +133,7 @@ class WcsphStage final : public Stage {
   NeighbourGrid cells_;
   Vec3 period_;  // domain length on periodic axes (lever arms of rigid-body wall sets)
   ScratchColumn inv_rho_;  // 1/rho per fluid particle, refilled every evaluation (grow only)
+  std::vector<sph::NeighbourRecord> records_;  // the fluid's fields side by side (mixed precision, one material)
   // The largest |v_ij.x_ij|/(r^2+eta^2), 1/s, of the fluid pass and of the
   // wall passes and pair terms (FluidRates::visc_max).
   double fluid_visc_max_ = 0.0, rates_visc_max_ = 0.0;

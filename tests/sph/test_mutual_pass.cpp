@@ -2,7 +2,7 @@
 // its gather form: the same accelerations, density rates and viscous rates on
 // a jittered two-material cloud with random velocities, closed and periodic,
 // 2D and 3D, on one and two threads; and bit-for-bit the same result when a
-// run is repeated and on one or two threads.
+// run is repeated, on one or two threads, and from neighbour records.
 #include <gtest/gtest.h>
 
 #include <omp.h>
@@ -340,6 +340,63 @@ TEST_P(MutualPass, OneMaterialAndMassGiveTheSameBitsWithoutReadingThem) {
        sph::DensityDiffusion<true, decltype(uniform)>{uniform, delta_h_c0, g});
 }
 
+// Mixed precision's fluid of one material and one mass: the terms on
+// GatheredNeighbourFields read j's fields from the records, gathered eight
+// at a time into the lanes, and give the rates of the float columns bit for
+// bit, the dam break's terms and the laminar ones.
+TEST_P(MutualPass, RecordsGiveTheBitsOfTheFloatColumns) {
+  const std::size_t n = cloud.x.size();
+  std::vector<Vec3f> v(n);
+  std::vector<float> rho(n), p(n), c(n), inv_rho(n), m(n, static_cast<float>(cloud.m[0]));
+  std::vector<std::int32_t> mat(n, 1);
+  std::vector<sph::NeighbourRecord> records(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    v[i] = cloud.v[i];
+    rho[i] = static_cast<float>(cloud.rho[i]);
+    p[i] = static_cast<float>(cloud.p[i]);
+    c[i] = static_cast<float>(cloud.c[i]);
+    inv_rho[i] = static_cast<float>(1.0 / rho[i]);
+    records[i] = {v[i].x, v[i].y, v[i].z, rho[i], p[i], c[i], inv_rho[i], 0.0f};
+    cloud.m[i] = m[i];
+    cloud.mat[i] = 1;
+  }
+  use_material_viscosities();
+  sph::UniformNeighbourFields<float> columns{{v.data(), rho.data(), p.data(), c.data(), m.data(), mat.data(),
+                                              inv_rho.data(), nullptr}};
+  columns.mass_of_all = m[0];
+  columns.material_of_all = 1;
+  sph::GatheredNeighbourFields gathered{columns};
+  gathered.record = records.data();
+  gathered.velocity = nullptr;  // a read of any column would crash
+  gathered.density = gathered.pressure = gathered.sound_speed = gathered.inv_density = nullptr;
+  const double h = kernel.h(), eta2 = sph::laminar_eta2(h), delta_h_c0 = 0.1 * h * 30.0;
+  const Vec3 g{0, -9.81, 0};
+  auto same = [&](const auto&... on_columns) {
+    return [&](const auto&... on_records) {
+      Rates want = zero_rates(n), got = zero_rates(n, 9.0);
+      auto start = [&](Index i) { return start_of(cloud, i); };
+      want.visc_max = sph::mutual_pair_pass(grid, kernel, want.out(), n, start, [](Index) {}, on_columns...).visc_max;
+      ASSERT_GT(largest(want.acc) + largest(want.drho), 0.0);
+      got.visc_max = sph::mutual_pair_pass(grid, kernel, got.out(), n, start, [](Index) {}, on_records...).visc_max;
+      for (std::size_t i = 0; i < n; ++i) {
+        ASSERT_EQ(got.acc[i], want.acc[i]) << i;
+        ASSERT_EQ(got.drho[i], want.drho[i]) << i;
+      }
+      EXPECT_EQ(got.visc_max, want.visc_max);
+    };
+  };
+  using Columns = decltype(columns);
+  using Records = sph::GatheredNeighbourFields;
+  same(sph::PressureForce{columns}, sph::ArtificialViscosity{columns, 0.1 * h}, sph::Continuity{columns},
+       sph::DensityDiffusion<true, Columns>{columns, delta_h_c0, g})(
+      sph::PressureForce{gathered}, sph::ArtificialViscosity{gathered, 0.1 * h}, sph::Continuity{gathered},
+      sph::DensityDiffusion<true, Records>{gathered, delta_h_c0, g});
+  same(sph::LaminarViscosity<false, Columns>{columns, cloud.mu_of_material, eta2},
+       sph::DensityDiffusion<false, Columns>{columns, delta_h_c0, g})(
+      sph::LaminarViscosity<false, Records>{gathered, cloud.mu_of_material, eta2},
+      sph::DensityDiffusion<false, Records>{gathered, delta_h_c0, g});
+}
+
 // On several MPI ranks the last rows are halo copies, whose rates are not
 // wanted: the pass skips the pairs of two of them. The owned rows' rates are
 // those of the whole pass bit for bit (every pair with an owned row is still
@@ -361,6 +418,30 @@ TEST_P(MutualPass, SkipsPairsOfTwoHaloCopiesAndKeepsTheOwnedRates) {
   EXPECT_NEAR(mutual(cloud, grid, kernel, viscosity, owned).visc_max, bound, 1e-12 * bound);
   EXPECT_LT(owned_pairs, all_pairs);
   EXPECT_GT(owned_pairs, all_pairs / 2);
+}
+
+// Each lane gets its own record's fields, whatever the order of the rows and
+// past a whole eight (the spare lanes of the last eight hold a real row).
+TEST(NeighbourRecords, GatherEachLanesOwnFields) {
+  std::vector<sph::NeighbourRecord> records(40);
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const float f = static_cast<float>(i);
+    records[i] = {f + 0.1f, f + 0.2f, f + 0.3f, 1000.0f + f, 50.0f * f, 30.0f + f, 1.0f / (1000.0f + f), 0.0f};
+  }
+  const int n = 13;
+  Index j[16] = {39, 0, 7, 7, 21, 3, 38, 12, 5, 30, 1, 16, 9, 39, 39, 39};
+  sph::GatheredLanes<16> lanes{};
+  sph::gather_records(records.data(), j, n, lanes);
+  for (int k = 0; k < n; ++k) {
+    const sph::NeighbourRecord& r = records[j[k]];
+    EXPECT_EQ(lanes.vx[k], r.vx) << k;
+    EXPECT_EQ(lanes.vy[k], r.vy) << k;
+    EXPECT_EQ(lanes.vz[k], r.vz) << k;
+    EXPECT_EQ(lanes.rho[k], r.rho) << k;
+    EXPECT_EQ(lanes.p[k], r.p) << k;
+    EXPECT_EQ(lanes.c[k], r.c) << k;
+    EXPECT_EQ(lanes.inv_rho[k], r.inv_rho) << k;
+  }
 }
 
 // The write blocks cover level 0 only: a grid that binned points on a

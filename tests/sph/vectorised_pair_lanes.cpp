@@ -4,7 +4,9 @@
 // viscosity, continuity, Fourtakas diffusion); TERMS 2: laminar viscosity
 // with continuity and Molteni diffusion; TERMS 3: the dam break's set on a
 // fluid in float (mixed precision); TERMS 4: the same on a fluid of one
-// material and one mass (sph::UniformNeighbourFields), as the dam break runs.
+// material and one mass (sph::UniformNeighbourFields); TERMS 5: the same
+// from neighbour records (sph::GatheredNeighbourFields), as the dam break
+// runs in mixed precision.
 #include "fluid_sums.hpp"
 #include "talus/sph/fluid_terms.hpp"
 #include "talus/sph/mutual_pass.hpp"
@@ -16,7 +18,9 @@ using Stored = float;
 #else
 using Stored = double;
 #endif
-#if TERMS == 4
+#if TERMS == 5
+using Fields = sph::GatheredNeighbourFields;
+#elif TERMS == 4
 using Fields = sph::UniformNeighbourFields<Stored>;
 #else
 using Fields = sph::NeighbourFields<Stored>;

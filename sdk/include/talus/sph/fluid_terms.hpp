@@ -3,8 +3,10 @@
 // once and used by the fluid-fluid pass of the wcsph stage and by the
 // fluid-wall passes over the wall sets of boundary models. i is the particle
 // summing, j its neighbour; dx = x_i - x_j, grad = grad_i W_ij. Each term
-// reads the neighbour's fields through a NeighbourFields view (NB: in double,
-// or in float in mixed precision; the arithmetic is double) and the i-state from
+// reads the neighbour's fields through the accessors below (velocity_at(nb, q)
+// and the like, never nb's pointers): NB is a NeighbourFields view (in double,
+// or in float in mixed precision; the arithmetic is double), its uniform form,
+// or its gathered form, whose values come with the Pair. The i-state comes from
 // the pass's Sums (duck-typed members: v, m, rho, inv_rho, p, c, mu, kh, mat;
 // the sums acc, drho, visc). The terms of the fluid-fluid pass also have the
 // mutual form of sph/mutual_pass.hpp: one evaluation per pair, j's share
@@ -17,6 +19,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "talus/sph/neighbour_records.hpp"
 #include "talus/sph/pair_loop.hpp"
 #include "talus/vec3.hpp"
 
@@ -49,23 +52,58 @@ struct UniformNeighbourFields : NeighbourFields<Real> {
   std::int32_t material_of_all = 0;
 };
 
-// m_j and j's material, as the terms read them.
+// j's mass and material, as the terms read them.
 template <class Real>
-TALUS_PAIR_INLINE double mass_of(const NeighbourFields<Real>& nb, std::size_t j) {
-  return nb.mass[j];
+TALUS_PAIR_INLINE double mass_at(const NeighbourFields<Real>& nb, const Pair& q) {
+  return nb.mass[q.j];
 }
 template <class Real>
-TALUS_PAIR_INLINE double mass_of(const UniformNeighbourFields<Real>& nb, std::size_t) {
+TALUS_PAIR_INLINE double mass_at(const UniformNeighbourFields<Real>& nb, const Pair&) {
   return nb.mass_of_all;
 }
 template <class Real>
-TALUS_PAIR_INLINE std::int32_t material_of(const NeighbourFields<Real>& nb, std::size_t j) {
-  return nb.material[j];
+TALUS_PAIR_INLINE std::int32_t material_at(const NeighbourFields<Real>& nb, const Pair& q) {
+  return nb.material[q.j];
 }
 template <class Real>
-TALUS_PAIR_INLINE std::int32_t material_of(const UniformNeighbourFields<Real>& nb, std::size_t) {
+TALUS_PAIR_INLINE std::int32_t material_at(const UniformNeighbourFields<Real>& nb, const Pair&) {
   return nb.material_of_all;
 }
+
+// The neighbours of a pass of one material and one mass, in float, whose
+// fields the mutual pass gathers from `record` (filled from the columns
+// before the pass: neighbour_records.hpp) into each pair's Pair::j_state.
+// The values are the columns', and so are the results, bit for bit.
+struct GatheredNeighbourFields : UniformNeighbourFields<float> {
+  const NeighbourRecord* record = nullptr;
+};
+
+// j's velocity, density, pressure, sound speed and 1/rho, as the terms read them.
+template <class Real>
+TALUS_PAIR_INLINE Vec3 velocity_at(const NeighbourFields<Real>& nb, const Pair& q) {
+  return nb.velocity[q.j];
+}
+template <class Real>
+TALUS_PAIR_INLINE double density_at(const NeighbourFields<Real>& nb, const Pair& q) {
+  return nb.density[q.j];
+}
+template <class Real>
+TALUS_PAIR_INLINE double pressure_at(const NeighbourFields<Real>& nb, const Pair& q) {
+  return nb.pressure[q.j];
+}
+template <class Real>
+TALUS_PAIR_INLINE double sound_speed_at(const NeighbourFields<Real>& nb, const Pair& q) {
+  return nb.sound_speed[q.j];
+}
+template <class Real>
+TALUS_PAIR_INLINE double inv_density_at(const NeighbourFields<Real>& nb, const Pair& q) {
+  return nb.inv_density[q.j];
+}
+TALUS_PAIR_INLINE Vec3 velocity_at(const GatheredNeighbourFields&, const Pair& q) { return q.j_state.v; }
+TALUS_PAIR_INLINE double density_at(const GatheredNeighbourFields&, const Pair& q) { return q.j_state.rho; }
+TALUS_PAIR_INLINE double pressure_at(const GatheredNeighbourFields&, const Pair& q) { return q.j_state.p; }
+TALUS_PAIR_INLINE double sound_speed_at(const GatheredNeighbourFields&, const Pair& q) { return q.j_state.c; }
+TALUS_PAIR_INLINE double inv_density_at(const GatheredNeighbourFields&, const Pair& q) { return q.j_state.inv_rho; }
 
 // Symmetric pressure force, momentum conserving (Monaghan 2005 eq. 3.6; rock-
 // fluid seed eq. 14 in this form):  a_i += -sum_j m_j (p_i + p_j)/(rho_i rho_j) grad.
@@ -75,16 +113,14 @@ struct PressureForce {
   NB nb;
   template <class S>
   TALUS_PAIR_INLINE void pair(const Pair& q, S& s) const {
-    const std::size_t j = q.j;
-    const double f = mass_of(nb, j) * (s.p + nb.pressure[j]) * (s.inv_rho * nb.inv_density[j]);
+    const double f = mass_at(nb, q) * (s.p + pressure_at(nb, q)) * (s.inv_rho * inv_density_at(nb, q));
     s.acc -= q.grad() * f;
   }
   // grad_j W_ji = -grad_i W_ij: j gets +m_i times the shared factor.
   template <class S, class R>
   TALUS_PAIR_INLINE void mutual(const Pair& q, S& s, R& r) const {
-    const std::size_t j = q.j;
-    const Vec3 f = q.grad() * ((s.p + nb.pressure[j]) * (s.inv_rho * nb.inv_density[j]));
-    s.acc -= f * mass_of(nb, j);
+    const Vec3 f = q.grad() * ((s.p + pressure_at(nb, q)) * (s.inv_rho * inv_density_at(nb, q)));
+    s.acc -= f * mass_at(nb, q);
     r.acc += f * s.m;
   }
 };
@@ -99,26 +135,24 @@ struct ArtificialViscosity {
   double alpha_h = 0.0;  // alpha * h
   template <class S>
   TALUS_PAIR_INLINE void pair(const Pair& q, S& s) const {
-    const std::size_t j = q.j;
-    const double vdotx = dot(s.v - nb.velocity[j], q.dx);
+    const double vdotx = dot(s.v - velocity_at(nb, q), q.dx);
     const double rate = vdotx * q.inv_r2e;
     s.visc = std::max(s.visc, std::abs(rate));
     // -m_j Pi_ij = m_j alpha h cbar rate / rhobar; cbar/rhobar = (c_i + c_j)/(rho_i + rho_j).
     // Zero for receding pairs, written without a branch: the sign of v.x is unpredictable.
     const double approaching = std::min(rate, 0.0);
-    const double f = mass_of(nb, j) * alpha_h * approaching * (s.c + nb.sound_speed[j]) / (s.rho + nb.density[j]);
+    const double f = mass_at(nb, q) * alpha_h * approaching * (s.c + sound_speed_at(nb, q)) / (s.rho + density_at(nb, q));
     s.acc += q.grad() * f;
   }
   // v_ji . x_ji = v_ij . x_ij: the same Pi_ij, with the opposite gradient for j.
   template <class S, class R>
   TALUS_PAIR_INLINE void mutual(const Pair& q, S& s, R& r) const {
-    const std::size_t j = q.j;
-    const double rate = dot(s.v - nb.velocity[j], q.dx) * q.inv_r2e;
+    const double rate = dot(s.v - velocity_at(nb, q), q.dx) * q.inv_r2e;
     const double speed = std::abs(rate);
     s.visc = std::max(s.visc, speed);
     const double approaching = std::min(rate, 0.0);
-    const Vec3 f = q.grad() * (alpha_h * approaching * (s.c + nb.sound_speed[j]) / (s.rho + nb.density[j]));
-    s.acc += f * mass_of(nb, j);
+    const Vec3 f = q.grad() * (alpha_h * approaching * (s.c + sound_speed_at(nb, q)) / (s.rho + density_at(nb, q)));
+    s.acc += f * mass_at(nb, q);
     r.acc -= f * s.m;
   }
 };
@@ -144,25 +178,23 @@ struct LaminarViscosity {
   double eta2 = 0.0;
   template <class S>
   TALUS_PAIR_INLINE void pair(const Pair& q, S& s) const {
-    const std::size_t j = q.j;
-    const double mu_j = WallSide ? s.mu : mu_of_material[material_of(nb, j)];
-    const Vec3 vij = s.v - nb.velocity[j];
+    const double mu_j = WallSide ? s.mu : mu_of_material[material_at(nb, q)];
+    const Vec3 vij = s.v - velocity_at(nb, q);
     const double rate = dot(vij, q.dx) * q.inv_r2e;
     s.visc = std::max(s.visc, std::abs(rate));
-    const double f = mass_of(nb, j) * (s.mu + mu_j) * (s.inv_rho * nb.inv_density[j]) * laminar_weight(q, eta2);
+    const double f = mass_at(nb, q) * (s.mu + mu_j) * (s.inv_rho * inv_density_at(nb, q)) * laminar_weight(q, eta2);
     s.acc += vij * f;
   }
   // Fluid pairs only: v_ji = -v_ij with the same weight.
   template <class S, class R>
   TALUS_PAIR_INLINE void mutual(const Pair& q, S& s, R& r) const {
     static_assert(!WallSide, "a wall set is not a fluid neighbour");
-    const std::size_t j = q.j;
-    const Vec3 vij = s.v - nb.velocity[j];
+    const Vec3 vij = s.v - velocity_at(nb, q);
     const double speed = std::abs(dot(vij, q.dx) * q.inv_r2e);
     s.visc = std::max(s.visc, speed);
-    const Vec3 f = vij * ((s.mu + mu_of_material[material_of(nb, j)]) * (s.inv_rho * nb.inv_density[j]) *
+    const Vec3 f = vij * ((s.mu + mu_of_material[material_at(nb, q)]) * (s.inv_rho * inv_density_at(nb, q)) *
                           laminar_weight(q, eta2));
-    s.acc += f * mass_of(nb, j);
+    s.acc += f * mass_at(nb, q);
     r.acc -= f * s.m;
   }
 };
@@ -192,23 +224,21 @@ struct LaminarViscosityField {
   }
   template <class S>
   TALUS_PAIR_INLINE void pair(const Pair& q, S& s) const {
-    const std::size_t j = q.j;
     const double mu_pair = pair_viscosity(q, s);
-    const Vec3 vij = s.v - nb.velocity[j];
+    const Vec3 vij = s.v - velocity_at(nb, q);
     const double rate = dot(vij, q.dx) * q.inv_r2e;
     s.visc = std::max(s.visc, std::abs(rate));
-    const double f = mass_of(nb, j) * mu_pair * (s.inv_rho * nb.inv_density[j]) * laminar_weight(q, eta2);
+    const double f = mass_at(nb, q) * mu_pair * (s.inv_rho * inv_density_at(nb, q)) * laminar_weight(q, eta2);
     s.acc += vij * f;
   }
   template <class S, class R>
   TALUS_PAIR_INLINE void mutual(const Pair& q, S& s, R& r) const {
-    const std::size_t j = q.j;
     const double mu_pair = pair_viscosity(q, s);
-    const Vec3 vij = s.v - nb.velocity[j];
+    const Vec3 vij = s.v - velocity_at(nb, q);
     const double speed = std::abs(dot(vij, q.dx) * q.inv_r2e);
     s.visc = std::max(s.visc, speed);
-    const Vec3 f = vij * (mu_pair * (s.inv_rho * nb.inv_density[j]) * laminar_weight(q, eta2));
-    s.acc += f * mass_of(nb, j);
+    const Vec3 f = vij * (mu_pair * (s.inv_rho * inv_density_at(nb, q)) * laminar_weight(q, eta2));
+    s.acc += f * mass_at(nb, q);
     r.acc -= f * s.m;
   }
 };
@@ -225,9 +255,8 @@ struct VelocityGradient {
   NB nb;
   template <class S>
   TALUS_PAIR_INLINE void pair(const Pair& q, S& s) const {
-    const std::size_t j = q.j;
-    const double vol = mass_of(nb, j) * nb.inv_density[j];
-    const Vec3 dv = (nb.velocity[j] - s.v) * vol;
+    const double vol = mass_at(nb, q) * inv_density_at(nb, q);
+    const Vec3 dv = (velocity_at(nb, q) - s.v) * vol;
     const Vec3 dxj = q.dx * (-vol);  // V_j (x_j - x_i)
     const Vec3 gw = q.grad();
     for (int a = 0; a < 3; ++a)
@@ -297,17 +326,15 @@ struct LaplacianViscosity {
   const double* mu_of_material = nullptr;  // mu_j of a fluid neighbour (the mutual form)
   template <class S>
   TALUS_PAIR_INLINE void pair(const Pair& q, S& s) const {
-    const std::size_t j = q.j;
-    const double f = s.mu * s.inv_rho * mass_of(nb, j) * nb.inv_density[j] * kernel->laplacian(std::sqrt(q.r2));
-    s.acc += (nb.velocity[j] - s.v) * f;
+    const double f = s.mu * s.inv_rho * mass_at(nb, q) * inv_density_at(nb, q) * kernel->laplacian(std::sqrt(q.r2));
+    s.acc += (velocity_at(nb, q) - s.v) * f;
   }
   // Not symmetric in mu: j's share has mu_j / rho_j.
   template <class S, class R>
   TALUS_PAIR_INLINE void mutual(const Pair& q, S& s, R& r) const {
-    const std::size_t j = q.j;
-    const Vec3 vji = (nb.velocity[j] - s.v) * (s.inv_rho * nb.inv_density[j] * kernel->laplacian(std::sqrt(q.r2)));
-    s.acc += vji * (s.mu * mass_of(nb, j));
-    r.acc -= vji * (mu_of_material[material_of(nb, j)] * s.m);
+    const Vec3 vji = (velocity_at(nb, q) - s.v) * (s.inv_rho * inv_density_at(nb, q) * kernel->laplacian(std::sqrt(q.r2)));
+    s.acc += vji * (s.mu * mass_at(nb, q));
+    r.acc -= vji * (mu_of_material[material_at(nb, q)] * s.m);
   }
 };
 
@@ -323,16 +350,14 @@ struct Continuity {
   NB nb;  // needs inv_density
   template <class S>
   TALUS_PAIR_INLINE void pair(const Pair& q, S& s) const {
-    const std::size_t j = q.j;
-    s.drho += s.rho * mass_of(nb, j) * nb.inv_density[j] * dot(s.v - nb.velocity[j], q.grad());
+    s.drho += s.rho * mass_at(nb, q) * inv_density_at(nb, q) * dot(s.v - velocity_at(nb, q), q.grad());
   }
   // v_ji . grad_j W_ji = v_ij . grad_i W_ij: drho_j += rho_j (m_i/rho_i) times the same.
   template <class S, class R>
   TALUS_PAIR_INLINE void mutual(const Pair& q, S& s, R& r) const {
-    const std::size_t j = q.j;
-    const double vg = dot(s.v - nb.velocity[j], q.grad());
-    s.drho += s.rho * mass_of(nb, j) * nb.inv_density[j] * vg;
-    r.drho += nb.density[j] * s.m * s.inv_rho * vg;
+    const double vg = dot(s.v - velocity_at(nb, q), q.grad());
+    s.drho += s.rho * mass_at(nb, q) * inv_density_at(nb, q) * vg;
+    r.drho += density_at(nb, q) * s.m * s.inv_rho * vg;
   }
 };
 
@@ -355,27 +380,26 @@ struct DensityDiffusion {
   // delta h c0 2 (rho_i - rho_j - hydrostatic part) (x_ij . grad)/(r^2 + eta^2).
   template <class S>
   TALUS_PAIR_INLINE double flux(const Pair& q, const S& s) const {
-    const std::size_t j = q.j;
-    const double same_material = s.mat == material_of(nb, j) ? 1.0 : 0.0;
-    double drho = (s.rho - nb.density[j]) * same_material;
+    const double same_material = s.mat == material_at(nb, q) ? 1.0 : 0.0;
+    double drho = (s.rho - density_at(nb, q)) * same_material;
     if constexpr (Hydrostatic) {
       // rho_j/c_j^2 from the two fields the pair loads anyway: a division
       // costs no more than loading a third.
-      const double c_j = nb.sound_speed[j];
-      const double kbar = 0.5 * (s.kh + nb.density[j] / (c_j * c_j));
+      const double c_j = sound_speed_at(nb, q);
+      const double kbar = 0.5 * (s.kh + density_at(nb, q) / (c_j * c_j));
       drho -= kbar * dot(gravity, q.dx) * same_material;
     }
     return delta_h_c0 * 2.0 * drho * (q.r2 * q.dw_r) * q.inv_r2e;
   }
   template <class S>
   TALUS_PAIR_INLINE void pair(const Pair& q, S& s) const {
-    s.drho += flux(q, s) * mass_of(nb, q.j) * nb.inv_density[q.j];
+    s.drho += flux(q, s) * mass_at(nb, q) * inv_density_at(nb, q);
   }
   // The difference and x_ij change sign for j: drho_j -= the flux times m_i/rho_i.
   template <class S, class R>
   TALUS_PAIR_INLINE void mutual(const Pair& q, S& s, R& r) const {
     const double f = flux(q, s);
-    s.drho += f * mass_of(nb, q.j) * nb.inv_density[q.j];
+    s.drho += f * mass_at(nb, q) * inv_density_at(nb, q);
     r.drho -= f * s.m * s.inv_rho;
   }
 };

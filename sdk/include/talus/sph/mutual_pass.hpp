@@ -19,6 +19,10 @@
 // to j once all terms of the pair have run (one store per pair, not per term).
 // s is a LaneSums: i's state as the fluid terms read it (v, m, rho, inv_rho,
 // p, c, mu, kh, mat) and the sums acc, drho, visc of that one pair.
+//
+// Terms whose neighbours are GatheredNeighbourFields (fluid_terms.hpp) read
+// j's fields from records: each chunk of lanes gathers them eight records at
+// a time before the terms run, and hands them on in Pair::j_state.
 #pragma once
 
 #include <algorithm>
@@ -30,6 +34,7 @@
 #include "talus/error.hpp"
 #include "talus/kernel_table.hpp"
 #include "talus/neighbour_grid.hpp"
+#include "talus/sph/neighbour_records.hpp"
 #include "talus/sph/pair_loop.hpp"
 #include "talus/vec3.hpp"
 
@@ -73,7 +78,20 @@ struct PairLanes {
   int count = 0;
   Index j[size];
   double dx[size], dy[size], dz[size], r2[size], r[size], w[size], dw_r[size], inv_r2e[size];
+  GatheredLanes<size> gathered;  // j's fields, in a pass whose terms read them from records
 };
+
+// The records the terms of a pass read j's fields from (the first term's
+// that has them; every such term of a pass has the same), or none.
+template <class Term>
+const NeighbourRecord* records_of(const Term& term) {
+  if constexpr (ReadsRecords<Term>)
+    return term.nb.record;
+  else
+    return nullptr;
+}
+template <class... Terms>
+constexpr bool gathers_records = (ReadsRecords<Terms> || ...);
 
 // Each lane's shares for i and for j: local to the evaluation, so the
 // compiler can tell that the terms' reads of the particle fields never meet
@@ -108,6 +126,13 @@ template <bool NeedValue, bool NeedGradient, class S, class Out, class... Terms>
 [[gnu::noinline]] void run_lanes(PairLanes& L, const KernelTable& kernel, double eta2, S& sums, Out out,
                                  const Terms&... terms) {
   const int n = L.count;
+  constexpr bool gather = gathers_records<Terms...>;
+  if constexpr (gather) {
+    const NeighbourRecord* records = nullptr;
+    ((records = records ? records : records_of(terms)), ...);
+    for (int k = n; k % 8 != 0; ++k) L.j[k] = L.j[0];  // whole eights: the spare lanes load a real record
+    gather_records(records, L.j, n, L.gathered);
+  }
   if constexpr (NeedValue)
     for (int k = 0; k < n; ++k) {
       L.r[k] = std::sqrt(L.r2[k]);
@@ -135,6 +160,10 @@ template <bool NeedValue, bool NeedGradient, class S, class Out, class... Terms>
     if constexpr (NeedGradient) {
       q.dw_r = L.dw_r[k];
       q.inv_r2e = L.inv_r2e[k];
+    }
+    if constexpr (gather) {
+      const GatheredLanes<PairLanes::size>& g = L.gathered;
+      q.j_state = {Vec3{g.vx[k], g.vy[k], g.vz[k]}, g.rho[k], g.p[k], g.c[k], g.inv_rho[k]};
     }
     LaneSums<S> si(state);
     PairReaction rj;

@@ -35,9 +35,18 @@
 #include "talus/config.hpp"
 #include "talus/kernel_table.hpp"
 #include "talus/neighbour_grid.hpp"
+#include "talus/sph/neighbour_records.hpp"
 #include "talus/vec3.hpp"
 
 namespace talus::sph {
+
+// Neighbour j's fields as a pass that gathers them into its lanes hands them
+// on (GatheredNeighbourFields, fluid_terms.hpp); other passes leave it empty
+// and the terms read j's fields from the columns.
+struct NeighbourState {
+  Vec3 v;
+  double rho = 0.0, p = 0.0, c = 0.0, inv_rho = 0.0;
+};
 
 // The per-pair quantities every term of a pass shares.
 struct Pair {
@@ -48,6 +57,7 @@ struct Pair {
   double w = 0.0;    // W(r), filled when a term uses_value
   double dw_r = 0.0; // (dW/dr)/r, filled when a term uses_gradient: grad_i W_ij = dx * dw_r
   double inv_r2e = 0.0;  // 1/(r^2 + pair_eta2(h)), filled with the gradient
+  NeighbourState j_state;  // filled only by a pass that gathers j's fields
   Vec3 grad() const { return dx * dw_r; }
 };
 
@@ -78,6 +88,7 @@ TALUS_PAIR_INLINE std::uint64_t gather(Index i, const Vec3& xi, const NeighbourG
                                        const Terms&... terms) {
   constexpr bool need_value = (Terms::uses_value || ...);
   constexpr bool need_gradient = (Terms::uses_gradient || ...);
+  static_assert(!(ReadsRecords<Terms> || ...), "a gather pass reads j's fields from the columns, not from records");
   std::uint64_t count = 0;
   // Inlined into the scan (with TALUS_PAIR_INLINE terms): the terms of a pass become straight-line code.
   cells.for_each_neighbour(xi, radius, [&](Index j, const Vec3& dx, double r2) __attribute__((always_inline)) {
@@ -113,6 +124,7 @@ std::uint64_t pair_pass(std::size_t n, std::span<const Vec3> xa, const Neighbour
   const bool skip_self = sets == Sets::same;
   constexpr bool need_value = (Terms::uses_value || ...);
   constexpr bool need_gradient = (Terms::uses_gradient || ...);
+  static_assert(!(ReadsRecords<Terms> || ...), "a gather pass reads j's fields from the columns, not from records");
   std::uint64_t pairs = 0;
 #pragma omp parallel for schedule(dynamic, 128) reduction(+ : pairs) if (n >= parallel_min)
   for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {

@@ -1,0 +1,94 @@
+// Neighbour records: the fields a fluid pair reads of its neighbour j, side by
+// side in one 32-byte record per particle, and their gather into a pass's
+// lanes. From the columns, a chunk of pairs costs one load and one insert per
+// field and pair; from records, eight pairs' fields come in with eight whole
+// loads and an 8 x 8 transpose. Float only: a record of doubles would be a
+// cache line per particle, more memory than the loads it saves are worth.
+#pragma once
+
+#include <cstdint>
+
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
+
+#include "talus/config.hpp"
+
+namespace talus::sph {
+
+struct alignas(32) NeighbourRecord {
+  float vx = 0, vy = 0, vz = 0, rho = 0, p = 0, c = 0, inv_rho = 0, unused = 0;
+};
+
+// A term that reads j's fields from records (its neighbours are
+// GatheredNeighbourFields, fluid_terms.hpp): only the mutual pass gathers them.
+template <class Term>
+concept ReadsRecords = requires(const Term& t) { t.nb.record; };
+
+// j's gathered fields, lane by lane, in double (the terms' arithmetic).
+template <int Size>
+struct GatheredLanes {
+  double vx[Size], vy[Size], vz[Size], rho[Size], p[Size], c[Size], inv_rho[Size];
+};
+
+#if defined(__AVX2__)
+namespace detail {
+// Rows r[k] (record of lane k) to columns r[f] (field f of the eight lanes).
+TALUS_PAIR_INLINE void transpose8(__m256 r[8]) {
+  __m256 t[8], s[8];
+  for (int k = 0; k < 8; k += 2) {
+    t[k] = _mm256_unpacklo_ps(r[k], r[k + 1]);
+    t[k + 1] = _mm256_unpackhi_ps(r[k], r[k + 1]);
+  }
+  for (int k = 0; k < 8; k += 4) {
+    s[k] = _mm256_shuffle_ps(t[k], t[k + 2], 0x44);
+    s[k + 1] = _mm256_shuffle_ps(t[k], t[k + 2], 0xEE);
+    s[k + 2] = _mm256_shuffle_ps(t[k + 1], t[k + 3], 0x44);
+    s[k + 3] = _mm256_shuffle_ps(t[k + 1], t[k + 3], 0xEE);
+  }
+  for (int k = 0; k < 4; ++k) {
+    r[k] = _mm256_permute2f128_ps(s[k], s[k + 4], 0x20);
+    r[k + 4] = _mm256_permute2f128_ps(s[k], s[k + 4], 0x31);
+  }
+}
+
+TALUS_PAIR_INLINE void store_as_double(double* to, __m256 v) {
+  _mm256_storeu_pd(to, _mm256_cvtps_pd(_mm256_castps256_ps128(v)));
+  _mm256_storeu_pd(to + 4, _mm256_cvtps_pd(_mm256_extractf128_ps(v, 1)));
+}
+}  // namespace detail
+#endif
+
+// The records of j[0..n) into `out`. j must hold valid rows up to n rounded
+// up to eight (the lanes past n are gathered and not used).
+template <int Size>
+TALUS_PAIR_INLINE void gather_records(const NeighbourRecord* records, const Index* j, int n, GatheredLanes<Size>& out) {
+  static_assert(Size % 8 == 0, "lanes are gathered eight at a time");
+#if defined(__AVX2__)
+  for (int k = 0; k < n; k += 8) {
+    __m256 r[8];
+    for (int l = 0; l < 8; ++l) r[l] = _mm256_load_ps(&records[j[k + l]].vx);
+    detail::transpose8(r);
+    detail::store_as_double(out.vx + k, r[0]);
+    detail::store_as_double(out.vy + k, r[1]);
+    detail::store_as_double(out.vz + k, r[2]);
+    detail::store_as_double(out.rho + k, r[3]);
+    detail::store_as_double(out.p + k, r[4]);
+    detail::store_as_double(out.c + k, r[5]);
+    detail::store_as_double(out.inv_rho + k, r[6]);
+  }
+#else
+  for (int k = 0; k < n; ++k) {
+    const NeighbourRecord& r = records[j[k]];
+    out.vx[k] = r.vx;
+    out.vy[k] = r.vy;
+    out.vz[k] = r.vz;
+    out.rho[k] = r.rho;
+    out.p[k] = r.p;
+    out.c[k] = r.c;
+    out.inv_rho[k] = r.inv_rho;
+  }
+#endif
+}
+
+}  // namespace talus::sph
