@@ -1,6 +1,7 @@
 // Whether this process is one of several MPI ranks of one run, and what the
-// host asks of the ranks (mpi/rank_exchange.hpp does it). A build without MPI,
-// or a process not started by mpirun, is the single rank 0 of 1.
+// host asks of the ranks (mpi/rank_exchange.hpp does it, in
+// libtalus_ranks_mpi). A build without MPI, or a process not started by
+// mpirun, is the single rank 0 of 1.
 #pragma once
 
 #include <cstddef>
@@ -67,5 +68,17 @@ class Host : public Parallel {
 // a single rank.
 TALUS_API std::unique_ptr<Host> make_host(const World& world, double cell, double halo_reach,
                                           const std::string& partition);
+
+// What libtalus_ranks_mpi gives libtalus (its talus_ranks_backend()): the
+// functions above as MPI does them, once this process is one of several.
+struct Backend {
+  void (*start)(int* argc, char*** argv);
+  void (*stop)();
+  int (*rank)();
+  int (*count)();
+  void (*abort_all)(int code);  // returns only where MPI is not running
+  std::unique_ptr<Host> (*make_host)(const World& world, double cell, double halo_reach,
+                                     const std::string& partition);
+};
 
 }  // namespace talus::ranks

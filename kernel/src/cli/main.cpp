@@ -31,7 +31,12 @@ int finish(int code, const char* message) {
 
 int main(int argc, char** argv) {
   using namespace talus;
-  ranks::start(&argc, &argv);
+  try {
+    ranks::start(&argc, &argv);
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 2;
+  }
   cli::Args args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     std::fputs(cli::usage().c_str(), stdout);

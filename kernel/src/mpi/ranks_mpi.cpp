@@ -1,4 +1,7 @@
-#include "ranks.hpp"
+// The MPI side of ranks.hpp, in a library of its own (libtalus_ranks_mpi)
+// that libtalus loads only in a process mpirun started: a run on one process
+// never maps Open MPI, Zoltan and what they pull in.
+#include <mpi.h>
 
 #include <algorithm>
 #include <array>
@@ -6,24 +9,13 @@
 #include <functional>
 #include <numeric>
 
-#if TALUS_WITH_MPI
-#include <mpi.h>
-
 #include "mpi/rank_exchange.hpp"
 #include "mpi/shared_file.hpp"
-#endif
+#include "ranks.hpp"
 
 namespace talus::ranks {
 
-#if TALUS_WITH_MPI
-
 namespace {
-
-bool started_by_mpirun() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
-    if (std::getenv(name)) return true;
-  return false;
-}
 
 bool mpi_running() {
   int initialised = 0, finalised = 0;
@@ -120,10 +112,8 @@ void ExchangeHost::build_halos(World& world) {
   exchange_.build_halos(stores_of(world), groups, group_count);
 }
 
-}  // namespace
-
 void start(int* argc, char*** argv) {
-  if (!started_by_mpirun() || mpi_running()) return;
+  if (mpi_running()) return;
   int provided = 0;
   // OpenMP threads inside a rank; MPI is called from the main thread only.
   MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
@@ -147,11 +137,9 @@ int count() {
 
 void abort_all(int code) {
   if (mpi_running()) MPI_Abort(MPI_COMM_WORLD, code);
-  std::exit(code);
 }
 
 std::unique_ptr<Host> make_host(const World& world, double cell, double halo_reach, const std::string& partition) {
-  if (count() < 2) return nullptr;
   mpi::ExchangeSettings s;
   s.dim = world.dim;
   s.lo = world.lo;
@@ -163,15 +151,10 @@ std::unique_ptr<Host> make_host(const World& world, double cell, double halo_rea
   return std::make_unique<ExchangeHost>(s);
 }
 
-#else
+const Backend mpi_backend{start, stop, rank, count, abort_all, make_host};
 
-void start(int*, char***) {}
-void stop() {}
-int rank() { return 0; }
-int count() { return 1; }
-void abort_all(int code) { std::exit(code); }
-std::unique_ptr<Host> make_host(const World&, double, double, const std::string&) { return nullptr; }
-
-#endif
+}  // namespace
 
 }  // namespace talus::ranks
+
+extern "C" TALUS_API const talus::ranks::Backend* talus_ranks_backend() { return &talus::ranks::mpi_backend; }
