@@ -91,12 +91,12 @@ bool one_mass_and_material(const FluidFieldsOf<Real>& f) {
 const sph::NeighbourRecord* fill_records(const FluidFieldsOf<float>& f, const float* inv_rho,
                                          std::vector<sph::NeighbourRecord>& records) {
   const std::size_t n = f.rho.size();
-  records.resize(n);
+  records.resize(n + 1);  // the spare the gather's last load reads into
   sph::NeighbourRecord* r = records.data();
 #pragma omp parallel for schedule(static) if (n >= sph::parallel_min)
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3f v = f.v[i];
-    r[i] = {v.x, v.y, v.z, f.rho[i], f.p[i], f.c[i], inv_rho[i], 0.0f};
+    r[i] = {v.x, v.y, v.z, f.rho[i], f.p[i], f.c[i], inv_rho[i]};
   }
   return r;
 }

@@ -349,14 +349,14 @@ TEST_P(MutualPass, RecordsGiveTheBitsOfTheFloatColumns) {
   std::vector<Vec3f> v(n);
   std::vector<float> rho(n), p(n), c(n), inv_rho(n), m(n, static_cast<float>(cloud.m[0]));
   std::vector<std::int32_t> mat(n, 1);
-  std::vector<sph::NeighbourRecord> records(n);
+  std::vector<sph::NeighbourRecord> records(n + 1);  // with the spare
   for (std::size_t i = 0; i < n; ++i) {
     v[i] = cloud.v[i];
     rho[i] = static_cast<float>(cloud.rho[i]);
     p[i] = static_cast<float>(cloud.p[i]);
     c[i] = static_cast<float>(cloud.c[i]);
     inv_rho[i] = static_cast<float>(1.0 / rho[i]);
-    records[i] = {v[i].x, v[i].y, v[i].z, rho[i], p[i], c[i], inv_rho[i], 0.0f};
+    records[i] = {v[i].x, v[i].y, v[i].z, rho[i], p[i], c[i], inv_rho[i]};
     cloud.m[i] = m[i];
     cloud.mat[i] = 1;
   }
@@ -423,10 +423,10 @@ TEST_P(MutualPass, SkipsPairsOfTwoHaloCopiesAndKeepsTheOwnedRates) {
 // Each lane gets its own record's fields, whatever the order of the rows and
 // past a whole eight (the spare lanes of the last eight hold a real row).
 TEST(NeighbourRecords, GatherEachLanesOwnFields) {
-  std::vector<sph::NeighbourRecord> records(40);
+  std::vector<sph::NeighbourRecord> records(41);  // 40 rows and the spare
   for (std::size_t i = 0; i < records.size(); ++i) {
     const float f = static_cast<float>(i);
-    records[i] = {f + 0.1f, f + 0.2f, f + 0.3f, 1000.0f + f, 50.0f * f, 30.0f + f, 1.0f / (1000.0f + f), 0.0f};
+    records[i] = {f + 0.1f, f + 0.2f, f + 0.3f, 1000.0f + f, 50.0f * f, 30.0f + f, 1.0f / (1000.0f + f)};
   }
   const int n = 13;
   Index j[16] = {39, 0, 7, 7, 21, 3, 38, 12, 5, 30, 1, 16, 9, 39, 39, 39};

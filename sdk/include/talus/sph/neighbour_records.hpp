@@ -1,9 +1,11 @@
 // Neighbour records: the fields a fluid pair reads of its neighbour j, side by
-// side in one 32-byte record per particle, and their gather into a pass's
+// side in one 28-byte record per particle, and their gather into a pass's
 // lanes. From the columns, a chunk of pairs costs one load and one insert per
-// field and pair; from records, eight pairs' fields come in with eight whole
-// loads and an 8 x 8 transpose. Float only: a record of doubles would be a
-// cache line per particle, more memory than the loads it saves are worth.
+// field and pair; from records, eight pairs' fields come in with eight
+// 32-byte loads and an 8 x 8 transpose. Each load also reads the first field
+// of the next record, which the transpose drops: an array of records ends
+// with one spare. Float only: a record of doubles would be 56 bytes a
+// particle, more memory than the loads it saves are worth.
 #pragma once
 
 #include <cstdint>
@@ -16,8 +18,8 @@
 
 namespace talus::sph {
 
-struct alignas(32) NeighbourRecord {
-  float vx = 0, vy = 0, vz = 0, rho = 0, p = 0, c = 0, inv_rho = 0, unused = 0;
+struct NeighbourRecord {
+  float vx = 0, vy = 0, vz = 0, rho = 0, p = 0, c = 0, inv_rho = 0;
 };
 
 // A term that reads j's fields from records (its neighbours are
@@ -60,14 +62,15 @@ TALUS_PAIR_INLINE void store_as_double(double* to, __m256 v) {
 #endif
 
 // The records of j[0..n) into `out`. j must hold valid rows up to n rounded
-// up to eight (the lanes past n are gathered and not used).
+// up to eight (the lanes past n are gathered and not used), and `records`
+// one spare record after the last row.
 template <int Size>
 TALUS_PAIR_INLINE void gather_records(const NeighbourRecord* records, const Index* j, int n, GatheredLanes<Size>& out) {
   static_assert(Size % 8 == 0, "lanes are gathered eight at a time");
 #if defined(__AVX2__)
   for (int k = 0; k < n; k += 8) {
     __m256 r[8];
-    for (int l = 0; l < 8; ++l) r[l] = _mm256_load_ps(&records[j[k + l]].vx);
+    for (int l = 0; l < 8; ++l) r[l] = _mm256_loadu_ps(&records[j[k + l]].vx);
     detail::transpose8(r);
     detail::store_as_double(out.vx + k, r[0]);
     detail::store_as_double(out.vy + k, r[1]);
