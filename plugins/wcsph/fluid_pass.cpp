@@ -88,15 +88,14 @@ bool one_mass_and_material(const FluidFieldsOf<Real>& f) {
 }
 
 // The fluid's fields side by side, for the mutual pass to gather (float only).
-const sph::NeighbourRecord* fill_records(const FluidFieldsOf<float>& f, const float* inv_rho,
-                                         std::vector<sph::NeighbourRecord>& records) {
+const sph::NeighbourRecord* fill_records(const FluidFieldsOf<float>& f, std::vector<sph::NeighbourRecord>& records) {
   const std::size_t n = f.rho.size();
   records.resize(n + 1);  // the spare the gather's last load reads into
   sph::NeighbourRecord* r = records.data();
 #pragma omp parallel for schedule(static) if (n >= sph::parallel_min)
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3f v = f.v[i];
-    r[i] = {v.x, v.y, v.z, f.rho[i], f.p[i], f.c[i], inv_rho[i]};
+    r[i] = {v.x, v.y, v.z, f.rho[i], f.p[i], f.c[i]};
   }
   return r;
 }
@@ -140,7 +139,7 @@ std::uint64_t WcsphStage::fluid_pass(World& world) {
       uniform.material_of_all = f.mat[0];
       if constexpr (std::is_same_v<Real, float>) {
         sph::GatheredNeighbourFields gathered{uniform};
-        gathered.record = fill_records(f, nb.inv_density, records_);
+        gathered.record = fill_records(f, records_);
         run(gathered);
       } else {
         run(uniform);

@@ -1,11 +1,13 @@
 // Neighbour records: the fields a fluid pair reads of its neighbour j, side by
-// side in one 28-byte record per particle, and their gather into a pass's
+// side in one 24-byte record per particle, and their gather into a pass's
 // lanes. From the columns, a chunk of pairs costs one load and one insert per
 // field and pair; from records, eight pairs' fields come in with eight
-// 32-byte loads and an 8 x 8 transpose. Each load also reads the first field
-// of the next record, which the transpose drops: an array of records ends
-// with one spare. Float only: a record of doubles would be 56 bytes a
-// particle, more memory than the loads it saves are worth.
+// 32-byte loads and an 8 x 8 transpose. Each load also reads the first two
+// fields of the next record, which the transpose drops: an array of records
+// ends with one spare. 1/rho is not kept but formed in the lanes as the
+// stage forms its column, float(1/rho): the same value, for 4 bytes less a
+// particle. Float only: a record of doubles would be 48 bytes a particle,
+// more memory than the loads it saves are worth.
 #pragma once
 
 #include <cstdint>
@@ -19,7 +21,7 @@
 namespace talus::sph {
 
 struct NeighbourRecord {
-  float vx = 0, vy = 0, vz = 0, rho = 0, p = 0, c = 0, inv_rho = 0;
+  float vx = 0, vy = 0, vz = 0, rho = 0, p = 0, c = 0;
 };
 
 // A term that reads j's fields from records (its neighbours are
@@ -58,6 +60,13 @@ TALUS_PAIR_INLINE void store_as_double(double* to, __m256 v) {
   _mm256_storeu_pd(to, _mm256_cvtps_pd(_mm256_castps256_ps128(v)));
   _mm256_storeu_pd(to + 4, _mm256_cvtps_pd(_mm256_extractf128_ps(v, 1)));
 }
+
+// float(1/rho) of four densities, in double: divided in double and rounded
+// to float as a static_cast does (the default rounding mode).
+TALUS_PAIR_INLINE __m256d reciprocal_as_float(__m128 rho) {
+  const __m256d inv = _mm256_div_pd(_mm256_set1_pd(1.0), _mm256_cvtps_pd(rho));
+  return _mm256_cvtps_pd(_mm256_cvtpd_ps(inv));
+}
 }  // namespace detail
 #endif
 
@@ -78,7 +87,8 @@ TALUS_PAIR_INLINE void gather_records(const NeighbourRecord* records, const Inde
     detail::store_as_double(out.rho + k, r[3]);
     detail::store_as_double(out.p + k, r[4]);
     detail::store_as_double(out.c + k, r[5]);
-    detail::store_as_double(out.inv_rho + k, r[6]);
+    _mm256_storeu_pd(out.inv_rho + k, detail::reciprocal_as_float(_mm256_castps256_ps128(r[3])));
+    _mm256_storeu_pd(out.inv_rho + k + 4, detail::reciprocal_as_float(_mm256_extractf128_ps(r[3], 1)));
   }
 #else
   for (int k = 0; k < n; ++k) {
@@ -89,7 +99,7 @@ TALUS_PAIR_INLINE void gather_records(const NeighbourRecord* records, const Inde
     out.rho[k] = r.rho;
     out.p[k] = r.p;
     out.c[k] = r.c;
-    out.inv_rho[k] = r.inv_rho;
+    out.inv_rho[k] = static_cast<float>(1.0 / r.rho);
   }
 #endif
 }
