@@ -1,7 +1,5 @@
 #include "plugin_registry.hpp"
 
-#include <dlfcn.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -9,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "library_folder.hpp"
 #include "plugin_abi.hpp"
 #include "talus/error.hpp"
 #include "text.hpp"
@@ -102,12 +101,8 @@ PluginRegistry::~PluginRegistry() {
 }
 
 std::string PluginRegistry::builtin_folder() {
-  Dl_info info{};
-  if (dladdr(reinterpret_cast<void*>(&PluginRegistry::builtin_folder), &info) && info.dli_fname) {
-    const fs::path lib = fs::weakly_canonical(info.dli_fname);
-    return (lib.parent_path() / "talus" / "plugins").string();
-  }
-  return {};
+  const fs::path lib = library_folder();
+  return lib.empty() ? std::string{} : (lib / "talus" / "plugins").string();
 }
 
 void PluginRegistry::add_default_locations() {

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <string>
 
+#include "library_folder.hpp"
 #include "talus/error.hpp"
 
 namespace talus::ranks {
@@ -28,11 +29,10 @@ bool started_by_mpirun() {
 // Global symbols: Open MPI's own components, which it opens in turn, look
 // for libmpi's symbols there.
 const Backend* load_backend() {
-  namespace fs = std::filesystem;
-  Dl_info self{};
-  if (!dladdr(reinterpret_cast<void*>(&load_backend), &self) || !self.dli_fname)
+  const std::filesystem::path folder = library_folder();
+  if (folder.empty())
     throw InputError("error: started by mpirun, but the folder of libtalus is unknown (dladdr failed)");
-  const fs::path library = fs::path(self.dli_fname).parent_path() / TALUS_RANKS_MPI_LIBRARY;
+  const std::filesystem::path library = folder / TALUS_RANKS_MPI_LIBRARY;
   void* handle = dlopen(library.c_str(), RTLD_NOW | RTLD_GLOBAL);
   if (!handle)
     throw InputError("error: started by mpirun, but the MPI side of Talus does not load: " +
