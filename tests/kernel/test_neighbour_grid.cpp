@@ -171,6 +171,47 @@ TEST_P(OneRadius, LaterNeighboursGiveEveryPairOnce) {
   EXPECT_EQ(later_pairs_both_ways(c, radius), expected);
 }
 
+// A pass reads the hits a chunk at a time as its lanes: full chunks while
+// more follow, the rest in one last chunk, none left behind, and as many as
+// the query reports one by one.
+TEST_P(OneRadius, ChunksAreFullButTheLast) {
+  const auto [dim, periodic, outside] = GetParam();
+  const double radius = 0.11;
+  const Cloud c = random_cloud(dim, {-0.3, 0.1, 0.0}, {0.9, 0.7, 0.5}, periodic, outside, 1200,
+                               7u + dim + 2 * periodic[0] + 4 * periodic[1] + 8 * periodic[2] + 16 * outside);
+  NeighbourGrid grid;
+  grid.configure(c.dim, c.lo, c.hi, radius, c.periodic);
+  grid.build(c.pos);
+  std::size_t carried = 0;
+  for (std::size_t s = 0; s < c.pos.size(); ++s)
+    for (const bool later : {false, true}) {
+      std::vector<int> sizes;
+      NeighbourHits hits;
+      auto chunk = [&](const NeighbourHits& h) { sizes.push_back(h.count); };
+      std::size_t one_by_one = 0;
+      auto count = [&](Index, const Vec3&, double) { ++one_by_one; };
+      if (later) {
+        grid.later_neighbour_chunks(s, radius, hits, chunk);
+        grid.for_each_later_neighbour(s, radius, count);
+      } else {
+        const Vec3& x = c.pos[grid.order()[s]];
+        grid.neighbour_chunks(x, radius, hits, chunk);
+        grid.for_each_neighbour(x, radius, count);
+      }
+      EXPECT_EQ(hits.count, 0);
+      std::size_t total = 0;
+      for (std::size_t k = 0; k < sizes.size(); ++k) {
+        if (k + 1 < sizes.size()) EXPECT_EQ(sizes[k], NeighbourHits::size);
+        EXPECT_GE(sizes[k], 1);
+        EXPECT_LE(sizes[k], NeighbourHits::size);
+        total += static_cast<std::size_t>(sizes[k]);
+      }
+      EXPECT_EQ(total, one_by_one);
+      if (sizes.size() > 1) ++carried;
+    }
+  EXPECT_GT(carried, 100u);  // the clustered fifth has more hits than a chunk holds
+}
+
 // The write blocks: every sorted slot in exactly one block, and no point
 // written (as i or as a later neighbour j) from two blocks of one colour.
 // Returns the number of blocks that hold a point.

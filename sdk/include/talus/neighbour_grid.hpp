@@ -7,11 +7,14 @@
 // A query visits, per row of cells (fixed y and z), only the x-range that can
 // hold points within its reach and skips the rows that cannot, so it scans
 // about 1.7 times the sphere's volume instead of the 6.4 times of a 3 x 3 x 3
-// stencil of radius-sized cells (3D). Candidates are tested without a branch
-// and the hits handed on in chunks, so the scan never mispredicts. Blocks of
-// 4^dim cells remember whether they hold a point, so that a query far from
-// every point (a fluid particle in the middle of a tank, against the tank's
-// wall particles) ends after a few byte reads.
+// stencil of radius-sized cells (3D). Candidates are tested without a branch,
+// and each hit's index, offset and squared distance are stored as the test
+// forms them, a vector at a time, into a chunk of hits that is handed on
+// when full: the scan never mispredicts, and a pass reads the chunk as its
+// lanes without forming a distance twice. Blocks of 4^dim cells remember
+// whether they hold a point, so that a query far from every point (a fluid
+// particle in the middle of a tank, against the tank's wall particles) ends
+// after a few byte reads.
 //
 // Search radii that differ by orders of magnitude (a thinning run-out front,
 // where the smoothing length grows while the bulk keeps the scene's) are
@@ -30,8 +33,9 @@
 //
 // Query contract: f(j, dx, r2) for every binned point j and image with
 // r2 = |dx|^2 < reach^2, dx = x - x_j (the image's offset), the point itself
-// included if it was binned. Nothing allocates after the first build at a
-// given size and number of levels.
+// included if it was binned; or the same hits a chunk (NeighbourHits) at a
+// time. Nothing allocates after the first build at a given size and number
+// of levels.
 #pragma once
 
 #include <algorithm>
@@ -84,6 +88,18 @@ inline int floor_within(double s, int lo, int hi) {
   const double k = std::floor(s);
   return k > lo ? (k < hi ? static_cast<int>(k) : hi) : lo;
 }
+
+// Hits of one query in the order the scan found them, as structure of
+// arrays: point j, dx = x - x_j (the image's offset) and r2 = |dx|^2. The
+// scan stores a whole vector of hits at a time, so the arrays have room for
+// one vector beyond the `size` hits a full chunk holds.
+struct NeighbourHits {
+  static constexpr int size = 64;   // hits of a full chunk
+  static constexpr int vector = 8;  // the most hits one test adds
+  int count = 0;
+  Index j[size + vector];
+  double dx[size + vector], dy[size + vector], dz[size + vector], r2[size + vector];
+};
 
 class NeighbourGrid {
  public:
@@ -168,10 +184,19 @@ class NeighbourGrid {
   // Every point j within `reach` of x (a gather: reach is the caller's radius).
   template <class F>
   TALUS_PAIR_INLINE void for_each_neighbour(const Vec3& x, double reach, F&& f) const {
+    NeighbourHits hits;
+    neighbour_chunks(x, reach, hits, [&](const NeighbourHits& h) { each_hit(h, f); });
+  }
+
+  // The same hits a chunk at a time: chunk(hits) with `size` hits while more
+  // follow, then once with the rest, if any. `hits` is the caller's (a pass
+  // keeps its lanes there) and holds none before and after.
+  template <class Chunk>
+  TALUS_PAIR_INLINE void neighbour_chunks(const Vec3& x, double reach, NeighbourHits& hits, Chunk&& chunk) const {
     if (any_periodic_)
-      query<true, false>(x, reach, f);
+      query<true, false>(x, reach, hits, chunk);
     else
-      query<false, false>(x, reach, f);
+      query<false, false>(x, reach, hits, chunk);
   }
 
   // Every point j within `reach` of the binned point in sorted slot `slot`
@@ -181,12 +206,20 @@ class NeighbourGrid {
   // dx = x_slot - x_j as in for_each_neighbour.
   template <class F>
   TALUS_PAIR_INLINE void for_each_later_neighbour(std::size_t slot, double reach, F&& f) const {
+    NeighbourHits hits;
+    later_neighbour_chunks(slot, reach, hits, [&](const NeighbourHits& h) { each_hit(h, f); });
+  }
+
+  // The same hits a chunk at a time, as neighbour_chunks hands them on.
+  template <class Chunk>
+  TALUS_PAIR_INLINE void later_neighbour_chunks(std::size_t slot, double reach, NeighbourHits& hits,
+                                                Chunk&& chunk) const {
     const Vec3 x{xs_[slot], ys_[slot], zs_[slot]};
     const Index first = static_cast<Index>(slot + 1);
     if (any_periodic_)
-      query<true, false>(x, reach, f, first);
+      query<true, false>(x, reach, hits, chunk, first);
     else
-      query<false, false>(x, reach, f, first);
+      query<false, false>(x, reach, hits, chunk, first);
   }
 
   // Write blocks, for a pass that adds each pair's share to both of its
@@ -253,10 +286,12 @@ class NeighbourGrid {
   // a superset of the pairs with r < max(R_x, R_j), which the caller keeps.
   template <class F>
   void for_each_candidate_pair(const Vec3& x, double own, F&& f) const {
+    NeighbourHits hits;
+    auto chunk = [&](const NeighbourHits& h) { each_hit(h, f); };
     if (any_periodic_)
-      query<true, true>(x, own, f);
+      query<true, true>(x, own, hits, chunk);
     else
-      query<false, true>(x, own, f);
+      query<false, true>(x, own, hits, chunk);
   }
 
  private:
@@ -446,40 +481,52 @@ class NeighbourGrid {
     if (!any_periodic_) mark_filled_blocks();
   }
 
-  static constexpr int chunk = 64;
   static constexpr int block_cells = 4;  // cells per block edge (two search radii)
-  static constexpr int far_image = 27;  // an image beyond the neighbouring periods
-  // Hits of one query: sorted index and which periodic image (shift) it was
-  // found in; without periodic axes every shift is zero and is not stored.
-  // A chunk is handed on once it cannot take another full vector of hits.
-  static constexpr int vector_hits = 8;
-  struct Hits {
-    Index s[chunk + vector_hits];
-    std::uint8_t image[chunk + vector_hits];
-    Vec3 shift[far_image + 1];
-    int count = 0;
-  };
+
+  template <class F>
+  static void each_hit(const NeighbourHits& h, F& f) {
+    for (int k = 0; k < h.count; ++k) f(h.j[k], Vec3{h.dx[k], h.dy[k], h.dz[k]}, h.r2[k]);
+  }
+
+  // Hands on the first min(count, size) of the `count` hits stored, and moves
+  // the rest to the front; returns how many moved. Out of line: it runs once
+  // a chunk, and a pass's chunk is compiled once instead of at every scan.
+  template <class Chunk>
+  [[gnu::noinline]] static int hand_on(NeighbourHits& h, int count, Chunk& chunk) {
+    const int full = std::min(count, NeighbourHits::size);
+    h.count = full;
+    chunk(h);
+    const int rest = count - full;
+    for (int k = 0; k < rest; ++k) {
+      h.j[k] = h.j[full + k];
+      h.dx[k] = h.dx[full + k];
+      h.dy[k] = h.dy[full + k];
+      h.dz[k] = h.dz[full + k];
+      h.r2[k] = h.r2[full + k];
+    }
+    h.count = rest;
+    return rest;
+  }
 
   // Only slots from `first` on are scanned (a later-neighbour query).
-  template <bool Periodic, bool Candidates, class F>
-  TALUS_PAIR_INLINE void query(const Vec3& at, double own, F& f, Index first = 0) const {
+  template <bool Periodic, bool Candidates, class Chunk>
+  TALUS_PAIR_INLINE void query(const Vec3& at, double own, NeighbourHits& hits, Chunk& chunk, Index first = 0) const {
     const Vec3 x{at.x, at.y, dim_ == 3 ? at.z : 0.0};
-    Hits hits;
     for (std::size_t k = 0; k < level_.size(); ++k) {
       if (!(level_max_[k] > 0.0)) continue;  // an empty level
       const double reach = Candidates ? std::max(own, level_max_[k]) : own;
-      query_level<Periodic>(level_[k], x, reach, first, hits, f);
+      query_level<Periodic>(level_[k], x, reach, first, hits, chunk);
     }
-    flush<Periodic>(hits, x, f);
+    if (hits.count > 0) hand_on(hits, hits.count, chunk);
   }
 
   // The cells of level L within `reach` of x along each axis, row by row.
   // Every row of that block is scanned over the same cells along x: culling
   // rows and narrowing each to its chord of the sphere cost more (a root and
   // floors a row) than the distance tests of the candidates they would save.
-  template <bool Periodic, class F>
-  TALUS_PAIR_INLINE void query_level(const Level& L, const Vec3& x, double reach, Index first, Hits& hits,
-                                     F& f) const {
+  template <bool Periodic, class Chunk>
+  TALUS_PAIR_INLINE void query_level(const Level& L, const Vec3& x, double reach, Index first, NeighbourHits& hits,
+                                     Chunk& chunk) const {
     int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
     for (int a = 0; a < dim_ && a < 3; ++a) cell_range(L, x[a], reach, a, lo[a], hi[a]);
     // A point binned here (a later-neighbour query) always finds its own block filled.
@@ -500,13 +547,13 @@ class NeighbourGrid {
         const std::size_t row = plane + static_cast<std::size_t>(ry) * L.n[0];
         if (cell_start_[row + L.n[0]] <= first) continue;
         if (!periodic_[0]) {
-          const int image = Periodic ? image_of(hits, x, f, 0, iy, iz) : 0;
-          scan<Periodic>(row + x0, row + x1 + 1, x, image, r2max, first, hits, f);
+          const Vec3 q = Periodic ? x - image_shift(0, iy, iz) : x;
+          scan(row + x0, row + x1 + 1, q, r2max, first, hits, chunk);
         } else {
           for (int cx = x0; cx <= x1; ++cx) {
             int ix = 0;
             const int rx = wrap(L, cx, 0, ix);
-            scan<Periodic>(row + rx, row + rx + 1, x, image_of(hits, x, f, ix, iy, iz), r2max, first, hits, f);
+            scan(row + rx, row + rx + 1, x - image_shift(ix, iy, iz), r2max, first, hits, chunk);
           }
         }
       }
@@ -530,88 +577,74 @@ class NeighbourGrid {
     return k - image * L.n[a];
   }
 
-  // The slot of image (ix, iy, iz) in hits.shift: one of 27 for the
-  // neighbouring periods. A farther image gets far_image, whose shift is
-  // rewritten, so the hits found in the previous one are handed on first.
-  template <class F>
-  int image_of(Hits& hits, const Vec3& x, F& f, int ix, int iy, int iz) const {
-    const bool near = std::abs(ix) <= 1 && std::abs(iy) <= 1 && std::abs(iz) <= 1;
-    const int slot = near ? (ix + 1) + 3 * (iy + 1) + 9 * (iz + 1) : far_image;
-    if (!near) flush<true>(hits, x, f);
-    hits.shift[slot] = Vec3{ix * length_[0], iy * length_[1], iz * length_[2]};
-    return slot;
+  // Where image (ix, iy, iz) of the stored points lies: a query at x meets
+  // them as a query at x minus this shift meets the stored points.
+  Vec3 image_shift(int ix, int iy, int iz) const {
+    return Vec3{ix * length_[0], iy * length_[1], iz * length_[2]};
   }
 
-  template <bool Periodic, class F>
-  TALUS_PAIR_INLINE void flush(Hits& h, const Vec3& x, F& f) const {
-    for (int k = 0; k < h.count; ++k) {
-      const Index s = h.s[k];
-      Vec3 q = x;
-      if constexpr (Periodic) q -= h.shift[h.image[k]];
-      const Vec3 dx{q.x - xs_[s], q.y - ys_[s], q.z - zs_[s]};
-      f(order_[s], dx, dx.x * dx.x + dx.y * dx.y + dx.z * dx.z);
-    }
-    h.count = 0;
-  }
-
-  // |dx|^2 as the vector scan forms it. Fused only where the target has FMA:
-  // elsewhere std::fma would be a library call per candidate (and there is no
-  // vector scan to agree with).
+  // |dx|^2 as the vector scan forms it: in the order GCC contracts
+  // dx*dx + dy*dy + dz*dz into, so that a pass that formed the distance
+  // itself would find the same bits. Fused only where the target has FMA:
+  // elsewhere std::fma would be a library call per candidate (and there is
+  // no vector scan to agree with).
   static double distance2(double dx, double dy, double dz) {
 #if defined(__FMA__)
-    return std::fma(dz, dz, std::fma(dy, dy, dx * dx));
+    return std::fma(dz, dz, std::fma(dx, dx, dy * dy));
 #else
     return dx * dx + dy * dy + dz * dz;
 #endif
   }
 
-  // Tests the sorted points of cells [c0, c1) from slot `first` on without a
-  // branch on the outcome; hands full chunks to f. With AVX-512, eight points
-  // a test and their hits' slots compressed into place; the remainder one by
-  // one with the same operations in the same order, so a point's outcome does
-  // not depend on where its run starts.
-  template <bool Periodic, class F>
-  TALUS_PAIR_INLINE void scan(std::size_t c0, std::size_t c1, const Vec3& x, int image, double r2max, Index first,
-                              Hits& hits, F& f) const {
+  // Tests the sorted points of cells [c0, c1) from slot `first` on against
+  // the query point q without a branch on the outcome, and stores the hits
+  // into the chunk, handing it on when full. With AVX-512, eight points a
+  // test (the last test of a run masked to the points left) and the hits
+  // compressed into place; otherwise one by one with the same operations in
+  // the same order, so a point's outcome is the same on either path.
+  template <class Chunk>
+  TALUS_PAIR_INLINE void scan(std::size_t c0, std::size_t c1, const Vec3& q, double r2max, Index first,
+                              NeighbourHits& hits, Chunk& chunk) const {
     const Index e = cell_start_[c1];
-    Vec3 q = x;
-    if constexpr (Periodic) q -= hits.shift[image];
-    // The count lives in a register: kept in `hits`, every candidate would wait on a store and reload.
+    // In registers: the stores into the chunk may alias anything, so members would be reloaded per test.
+    const double *xs = xs_.data(), *ys = ys_.data(), *zs = zs_.data();
+    const Index* order = order_.data();
     int count = hits.count;
     Index s = std::max(cell_start_[c0], first);
 #if defined(__AVX512F__) && defined(__AVX512VL__)
+    static_assert(NeighbourHits::vector == 8 && sizeof(Index) == 4);
     const __m512d vx = _mm512_set1_pd(q.x), vy = _mm512_set1_pd(q.y), vz = _mm512_set1_pd(q.z),
                   vmax = _mm512_set1_pd(r2max);
-    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-    for (; s + vector_hits <= e; s += vector_hits) {
-      const __m512d dx = _mm512_sub_pd(vx, _mm512_loadu_pd(&xs_[s]));
-      const __m512d dy = _mm512_sub_pd(vy, _mm512_loadu_pd(&ys_[s]));
-      const __m512d dz = _mm512_sub_pd(vz, _mm512_loadu_pd(&zs_[s]));
-      const __m512d r2 = _mm512_fmadd_pd(dz, dz, _mm512_fmadd_pd(dy, dy, _mm512_mul_pd(dx, dx)));
-      const __mmask8 within = _mm512_cmp_pd_mask(r2, vmax, _CMP_LT_OQ);
-      const __m256i slots = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(s)), lane);
-      _mm256_storeu_si256(reinterpret_cast<__m256i*>(&hits.s[count]), _mm256_maskz_compress_epi32(within, slots));
-      if constexpr (Periodic) std::memset(&hits.image[count], image, vector_hits);
+    for (; s < e; s += NeighbourHits::vector) {
+      const Index left = e - s;
+      const __mmask8 live = left >= 8 ? __mmask8(0xFF) : static_cast<__mmask8>((1u << left) - 1u);
+      const __m512d dx = _mm512_sub_pd(vx, _mm512_maskz_loadu_pd(live, xs + s));
+      const __m512d dy = _mm512_sub_pd(vy, _mm512_maskz_loadu_pd(live, ys + s));
+      const __m512d dz = _mm512_sub_pd(vz, _mm512_maskz_loadu_pd(live, zs + s));
+      const __m512d r2 = _mm512_fmadd_pd(dz, dz, _mm512_fmadd_pd(dx, dx, _mm512_mul_pd(dy, dy)));
+      const __mmask8 within = _mm512_mask_cmp_pd_mask(live, r2, vmax, _CMP_LT_OQ);
+      const __m256i j = _mm256_maskz_loadu_epi32(live, order + s);
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(hits.j + count), _mm256_maskz_compress_epi32(within, j));
+      _mm512_storeu_pd(hits.dx + count, _mm512_maskz_compress_pd(within, dx));
+      _mm512_storeu_pd(hits.dy + count, _mm512_maskz_compress_pd(within, dy));
+      _mm512_storeu_pd(hits.dz + count, _mm512_maskz_compress_pd(within, dz));
+      _mm512_storeu_pd(hits.r2 + count, _mm512_maskz_compress_pd(within, r2));
       count += __builtin_popcount(within);
-      if (count > chunk - vector_hits) {
-        hits.count = count;
-        flush<Periodic>(hits, x, f);
-        count = 0;
-      }
+      if (count >= NeighbourHits::size) count = hand_on(hits, count, chunk);
+    }
+#else
+    for (; s < e; ++s) {
+      const double dx = q.x - xs[s], dy = q.y - ys[s], dz = q.z - zs[s];
+      const double r2 = distance2(dx, dy, dz);
+      hits.j[count] = order[s];
+      hits.dx[count] = dx;
+      hits.dy[count] = dy;
+      hits.dz[count] = dz;
+      hits.r2[count] = r2;
+      count += r2 < r2max ? 1 : 0;
+      if (count >= NeighbourHits::size) count = hand_on(hits, count, chunk);
     }
 #endif
-    for (; s < e; ++s) {
-      const double dx = q.x - xs_[s], dy = q.y - ys_[s], dz = q.z - zs_[s];
-      const double r2 = distance2(dx, dy, dz);
-      hits.s[count] = s;
-      if constexpr (Periodic) hits.image[count] = static_cast<std::uint8_t>(image);
-      count += r2 < r2max ? 1 : 0;
-      if (count > chunk - vector_hits) {
-        hits.count = count;
-        flush<Periodic>(hits, x, f);
-        count = 0;
-      }
-    }
     hits.count = count;
   }
 

@@ -72,14 +72,28 @@ struct MutualPassResult {
 };
 
 // A chunk of particle i's pairs in lanes (structure of arrays): what the
-// traversal found and the kernel's values.
+// traversal found, stored there by the grid's scan, and the kernel's values.
 struct PairLanes {
-  static constexpr int size = 64;
-  int count = 0;
-  Index j[size];
-  double dx[size], dy[size], dz[size], r2[size], r[size], w[size], dw_r[size], inv_r2e[size];
+  static constexpr int size = NeighbourHits::size;
+  NeighbourHits hits;  // j, dx, dy, dz, r2 and their count
+  double r[size], w[size], dw_r[size], inv_r2e[size];
   GatheredLanes<size> gathered;  // j's fields, in a pass whose terms read them from records
 };
+
+// Keeps only the hits whose point is below `owned`, in their order.
+inline void keep_owned(NeighbourHits& h, std::size_t owned) {
+  int kept = 0;
+  for (int k = 0; k < h.count; ++k) {
+    if (h.j[k] >= owned) continue;
+    h.j[kept] = h.j[k];
+    h.dx[kept] = h.dx[k];
+    h.dy[kept] = h.dy[k];
+    h.dz[kept] = h.dz[k];
+    h.r2[kept] = h.r2[k];
+    ++kept;
+  }
+  h.count = kept;
+}
 
 // The records the terms of a pass read j's fields from (the first term's
 // that has them; every such term of a pass has the same), or none.
@@ -125,34 +139,35 @@ struct LaneSums {
 template <bool NeedValue, bool NeedGradient, class S, class Out, class... Terms>
 [[gnu::noinline]] void run_lanes(PairLanes& L, const KernelTable& kernel, double eta2, S& sums, Out out,
                                  const Terms&... terms) {
-  const int n = L.count;
+  NeighbourHits& h = L.hits;
+  const int n = h.count;
   constexpr bool gather = gathers_records<Terms...>;
   if constexpr (gather) {
     const NeighbourRecord* records = nullptr;
     ((records = records ? records : records_of(terms)), ...);
-    for (int k = n; k % 8 != 0; ++k) L.j[k] = L.j[0];  // whole eights: the spare lanes load a real record
-    gather_records(records, L.j, n, L.gathered);
+    for (int k = n; k % 8 != 0; ++k) h.j[k] = h.j[0];  // whole eights: the spare lanes load a real record
+    gather_records(records, h.j, n, L.gathered);
   }
   if constexpr (NeedValue)
     for (int k = 0; k < n; ++k) {
-      L.r[k] = std::sqrt(L.r2[k]);
+      L.r[k] = std::sqrt(h.r2[k]);
       L.w[k] = kernel.w(L.r[k]);
     }
   if constexpr (NeedGradient) {
     if (kernel.gradient_by_r2())
-      kernel.dw_over_r_within_support(L.r2, L.dw_r, n);
+      kernel.dw_over_r_within_support(h.r2, L.dw_r, n);
     else
-      for (int k = 0; k < n; ++k) L.dw_r[k] = kernel.dw_over_r_from_r2(L.r2[k]);
-    for (int k = 0; k < n; ++k) L.inv_r2e[k] = 1.0 / (L.r2[k] + eta2);
+      for (int k = 0; k < n; ++k) L.dw_r[k] = kernel.dw_over_r_from_r2(h.r2[k]);
+    for (int k = 0; k < n; ++k) L.inv_r2e[k] = 1.0 / (h.r2[k] + eta2);
   }
   LaneShares out_of;
   const S state = sums;  // a local copy: no store in the loop can alias it
   // The terms, lane by lane: the loop tests/sph/vectorised_pair_lanes.cmake checks.
   for (int k = 0; k < n; ++k) {
     Pair q;
-    q.j = L.j[k];
-    q.dx = Vec3{L.dx[k], L.dy[k], L.dz[k]};
-    q.r2 = L.r2[k];
+    q.j = h.j[k];
+    q.dx = Vec3{h.dx[k], h.dy[k], h.dz[k]};
+    q.r2 = h.r2[k];
     if constexpr (NeedValue) {
       q.r = L.r[k];
       q.w = L.w[k];
@@ -187,12 +202,11 @@ template <bool NeedValue, bool NeedGradient, class S, class Out, class... Terms>
     az += o.i_az[k];
     drho += o.i_drho[k];
     visc = std::max(visc, o.i_visc[k]);
-    out.add(L.j[k], Vec3{o.j_ax[k], o.j_ay[k], o.j_az[k]}, o.j_drho[k]);
+    out.add(h.j[k], Vec3{o.j_ax[k], o.j_ay[k], o.j_az[k]}, o.j_drho[k]);
   }
   sums.acc += Vec3{ax, ay, az};
   sums.drho += drho;
   sums.visc = visc;
-  L.count = 0;
 }
 
 // Runs the mutual pass over every point binned in `cells` (set A = set B; a
@@ -217,29 +231,18 @@ MutualPassResult mutual_pair_pass(const NeighbourGrid& cells, const KernelTable&
   const int threads = n >= parallel_min ? omp_get_max_threads() : 1;
   std::uint64_t pairs = 0;
   double visc_max = 0.0;
-  // Particle i's pairs with its later neighbours, gathered into lanes and
-  // evaluated a chunk at a time; returns the evaluations (twice the pairs).
+  // Particle i's pairs with its later neighbours, a chunk of lanes at a
+  // time as the grid stores them; returns the evaluations (twice the pairs).
   auto pairs_from = [&](std::size_t slot, PairLanes& lanes, double& visc) __attribute__((always_inline)) {
     const Index i = order[slot];
     auto sums = start(i);
     std::uint64_t count = 0;
     const bool halo_i = i >= owned;
-    // One traversal for both kinds of i (not two inlined copies, whose
-    // floating-point code could differ): the owned rates stay bit for bit.
-    cells.for_each_later_neighbour(slot, radius, [&](Index j, const Vec3& dx, double r2)
-                                                     __attribute__((always_inline)) {
-      if (halo_i && j >= owned) return;
-      const int k = lanes.count;
-      lanes.j[k] = j;
-      lanes.dx[k] = dx.x;
-      lanes.dy[k] = dx.y;
-      lanes.dz[k] = dx.z;
-      lanes.r2[k] = r2;
-      ++count;
-      if (++lanes.count == PairLanes::size)
-        run_lanes<need_value, need_gradient>(lanes, kernel, eta2, sums, out, terms...);
+    cells.later_neighbour_chunks(slot, radius, lanes.hits, [&](NeighbourHits& hits) {
+      if (halo_i) keep_owned(hits, owned);  // pairs of two halo copies are not wanted
+      count += static_cast<std::uint64_t>(hits.count);
+      if (hits.count > 0) run_lanes<need_value, need_gradient>(lanes, kernel, eta2, sums, out, terms...);
     });
-    if (lanes.count > 0) run_lanes<need_value, need_gradient>(lanes, kernel, eta2, sums, out, terms...);
     out.add(i, sums.acc, sums.drho);
     visc = std::max(visc, sums.visc);
     return 2 * count;

@@ -122,32 +122,12 @@ std::uint64_t pair_pass(std::size_t n, std::span<const Vec3> xa, const Neighbour
   const double radius = kernel.support_radius();
   const double eta2 = pair_eta2(kernel.h());
   const bool skip_self = sets == Sets::same;
-  constexpr bool need_value = (Terms::uses_value || ...);
-  constexpr bool need_gradient = (Terms::uses_gradient || ...);
-  static_assert(!(ReadsRecords<Terms> || ...), "a gather pass reads j's fields from the columns, not from records");
   std::uint64_t pairs = 0;
 #pragma omp parallel for schedule(dynamic, 128) reduction(+ : pairs) if (n >= parallel_min)
   for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
     const Index i = static_cast<Index>(ii);
     auto sums = start(i);
-    std::uint64_t count = 0;
-    cells.for_each_neighbour(xa[i], radius, [&](Index j, const Vec3& dx, double r2) __attribute__((always_inline)) {
-      if (skip_self && j == i) return;
-      Pair p;
-      p.j = j;
-      p.dx = dx;
-      p.r2 = r2;
-      if constexpr (need_value) {
-        p.r = std::sqrt(r2);
-        p.w = kernel.w(p.r);
-      }
-      if constexpr (need_gradient) {
-        p.dw_r = kernel.dw_over_r_from_r2(r2);
-        p.inv_r2e = 1.0 / (r2 + eta2);
-      }
-      ++count;
-      detail::apply_terms(p, sums, terms...);
-    });
+    const std::uint64_t count = detail::gather(i, xa[i], cells, kernel, radius, eta2, skip_self, sums, terms...);
     finish(i, sums);
     pairs += count;
   }
