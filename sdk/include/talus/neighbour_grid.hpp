@@ -99,6 +99,14 @@ struct NeighbourHits {
   int count = 0;
   Index j[size + vector];
   double dx[size + vector], dy[size + vector], dz[size + vector], r2[size + vector];
+  // Hit `from` into slot `to` (compacting or carrying hits to the front).
+  void move(int from, int to) {
+    j[to] = j[from];
+    dx[to] = dx[from];
+    dy[to] = dy[from];
+    dz[to] = dz[from];
+    r2[to] = r2[from];
+  }
 };
 
 class NeighbourGrid {
@@ -497,13 +505,7 @@ class NeighbourGrid {
     h.count = full;
     chunk(h);
     const int rest = count - full;
-    for (int k = 0; k < rest; ++k) {
-      h.j[k] = h.j[full + k];
-      h.dx[k] = h.dx[full + k];
-      h.dy[k] = h.dy[full + k];
-      h.dz[k] = h.dz[full + k];
-      h.r2[k] = h.r2[full + k];
-    }
+    for (int k = 0; k < rest; ++k) h.move(full + k, k);
     h.count = rest;
     return rest;
   }

@@ -83,15 +83,8 @@ struct PairLanes {
 // Keeps only the hits whose point is below `owned`, in their order.
 inline void keep_owned(NeighbourHits& h, std::size_t owned) {
   int kept = 0;
-  for (int k = 0; k < h.count; ++k) {
-    if (h.j[k] >= owned) continue;
-    h.j[kept] = h.j[k];
-    h.dx[kept] = h.dx[k];
-    h.dy[kept] = h.dy[k];
-    h.dz[kept] = h.dz[k];
-    h.r2[kept] = h.r2[k];
-    ++kept;
-  }
+  for (int k = 0; k < h.count; ++k)
+    if (h.j[k] < owned) h.move(k, kept++);
   h.count = kept;
 }
 
