@@ -11,6 +11,8 @@ OUT/runs/CASE/variants/, so a stopped verification resumes with --reuse and
   python3 tools/verify.py                 # full ladder, report in docs/verification/
   python3 tools/verify.py --quick         # smallest rung of every case (the test suite runs this)
   python3 tools/verify.py --case hydrostatic_2d --out /tmp/v
+  python3 tools/verify.py --precision mixed --out docs/verification/mixed   # the same cases with fields in float
+  python3 tools/verify.py --compare-precision docs/verification/mixed       # docs/verification/precision.md
 
 Hard cases (cases/hard_*.py, HARD_CASE = True) are stability runs without a reference: the report's
 "Hard cases (stability)" table gives whether each stayed stable, its worst measure over the whole run
@@ -25,7 +27,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-from verification import registry, report, runner  # noqa: E402
+from verification import precision, registry, report, runner  # noqa: E402
 
 
 def main():
@@ -48,6 +50,10 @@ def main():
     parser.add_argument("--precision", choices=["double", "mixed"], default=None,
                         help="run every case with this scene \"precision\" (mixed: the fields that allow it in float); "
                              "the option label says so")
+    parser.add_argument("--compare-precision", metavar="MIXED_OUT", default=None,
+                        help="run nothing: compare the report in --out (double) with the one in MIXED_OUT (made with "
+                             "--precision mixed) and write OUT/precision.md: every rung side by side, and whether "
+                             "mixed precision may be the default")
     args = parser.parse_args()
 
     cases = registry.load_cases()
@@ -61,6 +67,11 @@ def main():
             print(f"error: unknown case(s) {', '.join(sorted(unknown))}; --list shows them", file=sys.stderr)
             return 2
         cases = [c for c in cases if c.NAME in args.case]
+    if args.compare_precision:
+        out = args.out or os.path.join(root, "docs", "verification")
+        precision.write(os.path.join(out, "results.csv"), os.path.join(args.compare_precision, "results.csv"),
+                        os.path.join(out, "precision.md"))
+        return 0
     if not os.access(args.talus, os.X_OK):
         print(f"error: {args.talus} is not an executable talus; build first or pass --talus", file=sys.stderr)
         return 2

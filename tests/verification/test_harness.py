@@ -20,7 +20,7 @@ import unittest
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "tools"))
 
-from verification import registry, report, runner  # noqa: E402
+from verification import precision, registry, report, runner  # noqa: E402
 from verification.cases import _util  # noqa: E402
 
 TALUS = None
@@ -152,6 +152,76 @@ class Report(unittest.TestCase):
             self.assertAlmostEqual(rows[0].sim_time, 0.3)
         finally:
             shutil.rmtree(out)
+
+
+def water_case(name):
+    return types.SimpleNamespace(NAME=name, TITLE=name, REFERENCE="r", ERROR_LABEL="e")
+
+
+def water_result(case, option, resolution, error, passed=True, failure="", in_float="", commit=""):
+    return runner.Result(case, option, resolution, particles=100, steps=10, wall=1.0, memory=20.0, error=error,
+                         tolerance=0.1, passed=passed, failure=failure, in_float=in_float, commit=commit)
+
+
+class PrecisionComparison(unittest.TestCase):
+    """verify.py --compare-precision: rungs paired across the two reports, and the default decided from them."""
+
+    def setUp(self):
+        self.root = tempfile.mkdtemp()
+        self.double, self.mixed = os.path.join(self.root, "double"), os.path.join(self.root, "mixed")
+        os.makedirs(self.double)
+        os.makedirs(self.mixed)
+        self.cases = [water_case("still"), water_case("dry")]
+        report.write([water_result("still", "walls=dbc", 0.02, 0.05, commit="aaa"),
+                      water_result("still", "walls=dbc", 0.01, 0.02, commit="aaa"),
+                      water_result("dry", "default", 1.0, 0.01, commit="aaa")], self.cases, self.double)
+
+    def tearDown(self):
+        shutil.rmtree(self.root)
+
+    def compare(self, mixed_results):
+        report.write(mixed_results, self.cases, self.mixed)
+        page = os.path.join(self.double, "precision.md")
+        allowed = precision.write(os.path.join(self.double, "results.csv"), os.path.join(self.mixed, "results.csv"), page)
+        return allowed, open(page).read()
+
+    def test_a_case_not_run_in_mixed_keeps_the_default_double(self):
+        fields = "fluid: velocity, density; walls: density"
+        allowed, text = self.compare([water_result("still", "precision=mixed, walls=dbc", 0.02, 0.055, in_float=fields, commit="bbb"),
+                                      water_result("still", "precision=mixed, walls=dbc", 0.01, 0.02, in_float=fields, commit="bbb")])
+        self.assertFalse(allowed)
+        self.assertIn("not run in mixed precision: `dry`", text)
+        self.assertIn("| walls=dbc | 0.02 | 0.05 | 0.055 | +10 % | 0.1 | pass | pass |", text)
+        self.assertIn(f"| `still` | 2 | 2 | {fields} | 2 | 2 | +10 % | bbb |", text)
+
+    def test_a_rung_failing_only_in_mixed_is_named(self):
+        allowed, text = self.compare([water_result("still", "precision=mixed, walls=dbc", 0.02, 0.05),
+                                      water_result("still", "precision=mixed, walls=dbc", 0.01, 0.2, passed=False,
+                                                   failure="error 0.2 above tolerance 0.1"),
+                                      water_result("dry", "precision=mixed", 1.0, 0.01)])
+        self.assertFalse(allowed)
+        self.assertIn("fails in mixed precision only: `still` walls=dbc 0.01", text)
+        self.assertIn("- mixed, walls=dbc 0.01: error 0.2 above tolerance 0.1", text)
+
+    def test_every_rung_passing_in_mixed_allows_it_as_default(self):
+        allowed, text = self.compare([water_result("still", "precision=mixed, walls=dbc", 0.02, 0.05),
+                                      water_result("still", "precision=mixed, walls=dbc", 0.01, 0.02),
+                                      water_result("dry", "precision=mixed", 1.0, 0.01)])
+        self.assertTrue(allowed)
+        self.assertIn("mixed precision may be the default", text)
+
+    def test_rows_of_the_wrong_precision_are_refused(self):
+        report.write([water_result("dry", "default", 1.0, 0.01)], self.cases, self.mixed)
+        with self.assertRaisesRegex(SystemExit, "not run with --precision mixed"):
+            precision.write(os.path.join(self.double, "results.csv"), os.path.join(self.mixed, "results.csv"),
+                            os.path.join(self.double, "precision.md"))
+
+    def test_the_report_links_the_comparison_and_names_a_rerun_case_commit(self):
+        self.compare([water_result("dry", "precision=mixed", 1.0, 0.01)])
+        report.write(report.read_previous(self.double, exclude=set(), known={"still", "dry"}), self.cases, self.double)
+        text = open(os.path.join(self.double, "README.md")).read()
+        self.assertIn("[precision.md](precision.md)", text)
+        self.assertIn("Run at commit aaa.", text)
 
 
 if __name__ == "__main__":

@@ -18,11 +18,18 @@ def machine():
                     break
     except OSError:
         pass
+    return f"{cpu}, {os.cpu_count()} cores, {platform.system()} {platform.release()}, commit {checkout_commit()}"
+
+
+def checkout_commit():
+    """The short commit of the checkout this harness runs from ("?" outside git)."""
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     try:
-        commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+        commit = subprocess.run(["git", "-C", root, "rev-parse", "--short", "HEAD"], capture_output=True,
+                                text=True).stdout.strip()
     except OSError:
-        commit = "?"
-    return f"{cpu}, {os.cpu_count()} cores, {platform.system()} {platform.release()}, commit {commit or '?'}"
+        commit = ""
+    return commit or "?"
 
 
 def fmt(x, spec=".3g"):
@@ -31,7 +38,7 @@ def fmt(x, spec=".3g"):
 
 COLUMNS = ["case", "option", "resolution", "particles", "steps", "wall_s", "particle_steps_per_s",
            "peak_memory_mib", "error", "tolerance", "observed_order", "passed", "known_deviation", "failure", "gates",
-           "sim_time_s", "bytes_per_particle", "hard_case", "stable", "worst_density_deviation"]
+           "sim_time_s", "bytes_per_particle", "hard_case", "stable", "worst_density_deviation", "in_float", "commit"]
 
 
 def number(row, key):
@@ -85,7 +92,8 @@ def read_previous(out, exclude, known):
                                   gates=[tuple(g) for g in json.loads(row.get("gates") or "[]")],
                                   sim_time=number(row, "sim_time_s"), bytes_per_particle=number(row, "bytes_per_particle"),
                                   hard=row.get("hard_case") == "True", stable=row.get("stable") == "True",
-                                  worst_density=number(row, "worst_density_deviation")))
+                                  worst_density=number(row, "worst_density_deviation"),
+                                  in_float=row.get("in_float") or "", commit=row.get("commit") or ""))
     return results
 
 
@@ -96,7 +104,7 @@ def write(results, cases, out, quick=False):
         for r in results:
             w.writerow([r.case, r.option_label, r.resolution, r.particles, r.steps, r.wall, r.rate, r.memory,
                         r.error, r.tolerance, r.order, r.passed, r.known, r.failure, json.dumps(r.gates),
-                        r.sim_time, r.bytes_per_particle, r.hard, r.stable, r.worst_density])
+                        r.sim_time, r.bytes_per_particle, r.hard, r.stable, r.worst_density, r.in_float, r.commit])
 
     by_case = defaultdict(list)
     for r in results:
@@ -140,6 +148,9 @@ def write(results, cases, out, quick=False):
              "previous one. Regenerate with `python3 tools/verify.py` (full) or `--quick` (smallest rungs).", ""]
     if quick:
         lines += ["**Quick mode: smallest rung only, no option sweeps.**", ""]
+    if os.path.exists(os.path.join(out, "precision.md")):
+        lines += ["Precision: every run here is in double. [precision.md](precision.md) sets the same rungs run in "
+                  "mixed precision beside them, and says which precision is the default and why.", ""]
     lines += ["Memory is the run's peak resident set (whole process, so small runs are dominated by the fixed cost "
               "of the binary and its plugins); per particle is that peak divided by the fluid + wall particles "
               "(blocks for DDA-only runs); marginal per particle is the growth of the peak from the previous rung "
@@ -150,6 +161,9 @@ def write(results, cases, out, quick=False):
             continue
         rs = by_case.get(case.NAME, [])
         lines += [f"## {case.NAME}: {case.TITLE}", "", f"Reference: {case.REFERENCE}. Error: {case.ERROR_LABEL}.", ""]
+        commits = sorted({r.commit for r in rs if r.commit})
+        if commits and commits != [checkout_commit()]:
+            lines += [f"Run at commit {', '.join(commits)}.", ""]
         if getattr(case, "KNOWN_DEVIATION", ""):
             lines += [f"**Known deviation (open):** {case.KNOWN_DEVIATION}", ""]
         if hasattr(case, "EXPECTED_ORDER"):

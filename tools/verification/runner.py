@@ -11,6 +11,7 @@ import subprocess
 from dataclasses import dataclass, field
 
 from verification.registry import is_hard
+from verification.report import checkout_commit
 
 
 @dataclass
@@ -59,6 +60,8 @@ class Result:
     hard: bool = False  # a stability-only case: error is its worst() measure, tolerance the limit on it
     stable: bool = False  # hard cases: finished, worst() finite and within its limit, every gate passed
     directory: str = ""  # the run's folder (its scene, log, summary and outputs)
+    in_float: str = ""  # the fields the run kept in float (summary "precision"); "none" in double
+    commit: str = ""  # the checkout verify.py ran from
 
 
 def option_grid(case, quick):
@@ -71,6 +74,17 @@ def option_grid(case, quick):
 
 def label(option):
     return ", ".join(f"{k}={v}" for k, v in sorted(option.items())) or "default"
+
+
+def fields_in_float(summary):
+    """The fields a run kept in float, from its summary's "precision" entry: "fluid: velocity_n, density_n; walls:
+    density", or "none"; "" for a summary without the entry."""
+    precision = summary.get("precision")
+    if not isinstance(precision, dict):
+        return ""
+    parts = [f"{store}: {precision[key]}" for store, key in (("fluid", "fluid_in_float"), ("walls", "walls_in_float"))
+             if precision.get(key, "none") != "none"]
+    return "; ".join(parts) or "none"
 
 
 def failed_at(text):
@@ -196,12 +210,13 @@ def run_case(case, talus, root, out, quick=False, threads=2, reuse=False, walls=
     rows = run_study(talus, directory, [p[3] for p in planned], threads, jobs, reuse)
 
     results = []
+    commit = checkout_commit()
     previous, ladder_of = None, None
     for (option, shown, resolution, scene), row in zip(planned, rows):
         if shown != ladder_of:
             previous, ladder_of = None, shown  # the ladder starts again for the next option
         result = Result(case.NAME, shown, resolution, tolerance=case.TOLERANCE.get(resolution, float("nan")),
-                        hard=hard, directory=row.get("directory", ""))
+                        hard=hard, directory=row.get("directory", ""), commit=commit)
         log = ""
         if result.directory and os.path.exists(os.path.join(result.directory, "run.log")):
             with open(os.path.join(result.directory, "run.log")) as f:
@@ -220,6 +235,7 @@ def run_case(case, talus, root, out, quick=False, threads=2, reuse=False, walls=
         result.rate = summary["particle_steps"] / result.wall if result.wall > 0 else float("nan")
         result.memory = summary["peak_memory_mib"]
         result.sim_time = summary.get("time", float("nan"))
+        result.in_float = fields_in_float(summary)
         match = re.search(r"worst ([0-9.eE+-]+)%", summary.get("stages", {}).get("wcsph", ""))
         if match:
             result.worst_density = float(match.group(1)) / 100.0
