@@ -87,7 +87,9 @@ def main():
     all_cases = registry.load_cases()
     if args.case and not args.quick:
         results = report.read_previous(out, exclude={c.NAME for c in cases}, known={c.NAME for c in all_cases}) + results
-    report.write(results, all_cases if args.case and not args.quick else cases, out, quick=args.quick)
+    # An update in place keeps the machine line of the report's own run; the rerun cases say where they ran.
+    header = report.stored_machine(out) if args.case and not args.quick else None
+    report.write(results, all_cases if args.case and not args.quick else cases, out, quick=args.quick, header=header)
     ran = {c.NAME for c in cases}
     known = [r for r in results if r.case in ran and not r.passed and r.known]
     failed = [r for r in results if r.case in ran and not r.passed and not r.known]

@@ -216,12 +216,17 @@ class PrecisionComparison(unittest.TestCase):
             precision.write(os.path.join(self.double, "results.csv"), os.path.join(self.mixed, "results.csv"),
                             os.path.join(self.double, "precision.md"))
 
-    def test_the_report_links_the_comparison_and_names_a_rerun_case_commit(self):
+    def test_the_report_links_the_comparison_and_a_rerun_case_says_where_it_ran(self):
         self.compare([water_result("dry", "precision=mixed", 1.0, 0.01)])
-        report.write(report.read_previous(self.double, exclude=set(), known={"still", "dry"}), self.cases, self.double)
-        text = open(os.path.join(self.double, "README.md")).read()
+        rows = report.read_previous(self.double, exclude=set(), known={"still", "dry"})
+        rows[-1].commit, rows[-1].machine = "ccc", "Some CPU, 2 cores"
+        report.write(rows, self.cases, self.double, header="Other CPU, 4 cores, Linux, commit aaa")
+        with open(os.path.join(self.double, "README.md")) as f:
+            text = f.read()
         self.assertIn("[precision.md](precision.md)", text)
-        self.assertIn("Run at commit aaa.", text)
+        self.assertEqual(report.stored_machine(self.double), "Other CPU, 4 cores, Linux, commit aaa")
+        self.assertEqual(text.count("Run at commit"), 1)  # still's rows ran at the header's commit
+        self.assertIn("Run at commit ccc on Some CPU, 2 cores (the rest of the report as named at the top).", text)
 
 
 if __name__ == "__main__":

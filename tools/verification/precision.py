@@ -108,7 +108,8 @@ def write(double_csv, mixed_csv, path):
     allowed, reasons = verdict(cases)
     lines = ["# Precision: double and mixed", "",
              "A scene runs in double unless it says `\"precision\": \"mixed\"`. Mixed precision keeps in float the fields "
-             "whose every reader allows it (see DESIGN.md, the particle store): positions and every sum stay double. "
+             "whose every reader allows it (DESIGN.md, principle 6); positions stay double, and the terms compute in "
+             "double. "
              "Which fields a run kept in float is in its summary; the column *in float* gives them. Where a case's "
              "fluid keeps only `velocity_n, density_n` (the integrator's saved state) in float, its scene has a term "
              "that reads the fluid in double (a non-Newtonian rheology, a block's walls), and the run is close to "

@@ -8,7 +8,8 @@ import subprocess
 from collections import defaultdict
 
 
-def machine():
+def processor():
+    """The CPU and its core count, as a row of results.csv records where it ran."""
     cpu = "unknown CPU"
     try:
         with open("/proc/cpuinfo") as f:
@@ -18,7 +19,23 @@ def machine():
                     break
     except OSError:
         pass
-    return f"{cpu}, {os.cpu_count()} cores, {platform.system()} {platform.release()}, commit {checkout_commit()}"
+    return f"{cpu}, {os.cpu_count()} cores"
+
+
+def machine():
+    return f"{processor()}, {platform.system()} {platform.release()}, commit {checkout_commit()}"
+
+
+def stored_machine(out):
+    """The machine line of the report already in out (without "Machine: "), or None."""
+    try:
+        with open(os.path.join(out, "README.md")) as f:
+            for line in f:
+                if line.startswith("Machine: "):
+                    return line[len("Machine: "):].strip().rstrip(".")
+    except OSError:
+        pass
+    return None
 
 
 def checkout_commit():
@@ -38,7 +55,7 @@ def fmt(x, spec=".3g"):
 
 COLUMNS = ["case", "option", "resolution", "particles", "steps", "wall_s", "particle_steps_per_s",
            "peak_memory_mib", "error", "tolerance", "observed_order", "passed", "known_deviation", "failure", "gates",
-           "sim_time_s", "bytes_per_particle", "hard_case", "stable", "worst_density_deviation", "in_float", "commit"]
+           "sim_time_s", "bytes_per_particle", "hard_case", "stable", "worst_density_deviation", "in_float", "commit", "machine"]
 
 
 def number(row, key):
@@ -93,22 +110,27 @@ def read_previous(out, exclude, known):
                                   sim_time=number(row, "sim_time_s"), bytes_per_particle=number(row, "bytes_per_particle"),
                                   hard=row.get("hard_case") == "True", stable=row.get("stable") == "True",
                                   worst_density=number(row, "worst_density_deviation"),
-                                  in_float=row.get("in_float") or "", commit=row.get("commit") or ""))
+                                  in_float=row.get("in_float") or "", commit=row.get("commit") or "",
+                                  machine=row.get("machine") or ""))
     return results
 
 
-def write(results, cases, out, quick=False):
+def write(results, cases, out, quick=False, header=None):
+    """The report in out: README.md, results.csv and a plot per case. header is the machine line of the report's
+    own run (default: this machine and checkout); a case whose rows ran elsewhere says where."""
     with open(os.path.join(out, "results.csv"), "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(COLUMNS)
         for r in results:
             w.writerow([r.case, r.option_label, r.resolution, r.particles, r.steps, r.wall, r.rate, r.memory,
                         r.error, r.tolerance, r.order, r.passed, r.known, r.failure, json.dumps(r.gates),
-                        r.sim_time, r.bytes_per_particle, r.hard, r.stable, r.worst_density, r.in_float, r.commit])
+                        r.sim_time, r.bytes_per_particle, r.hard, r.stable, r.worst_density, r.in_float, r.commit,
+                        r.machine])
 
     by_case = defaultdict(list)
     for r in results:
         by_case[r.case].append(r)
+    header = header or machine()
     plots = {}
     try:
         import matplotlib
@@ -142,7 +164,7 @@ def write(results, cases, out, quick=False):
         pass
 
     lines = ["# Talus verification report", "",
-             f"Machine: {machine()}.", "",
+             f"Machine: {header}.", "",
              "Each case runs its resolution ladder as a `talus study` (a run per rung and option); error is against the reference named below; "
              "wall time and throughput are from the run summary; the observed order compares each rung with the "
              "previous one. Regenerate with `python3 tools/verify.py` (full) or `--quick` (smallest rungs).", ""]
@@ -161,9 +183,10 @@ def write(results, cases, out, quick=False):
             continue
         rs = by_case.get(case.NAME, [])
         lines += [f"## {case.NAME}: {case.TITLE}", "", f"Reference: {case.REFERENCE}. Error: {case.ERROR_LABEL}.", ""]
-        commits = sorted({r.commit for r in rs if r.commit})
-        if commits and commits != [checkout_commit()]:
-            lines += [f"Run at commit {', '.join(commits)}.", ""]
+        where = sorted({(r.commit, r.machine) for r in rs if r.commit})
+        if where and not all(header.endswith(f"commit {commit}") and header.startswith(cpu) for commit, cpu in where):
+            lines += ["Run " + "; ".join(f"at commit {commit}" + (f" on {cpu}" if cpu else "") for commit, cpu in where)
+                      + " (the rest of the report as named at the top).", ""]
         if getattr(case, "KNOWN_DEVIATION", ""):
             lines += [f"**Known deviation (open):** {case.KNOWN_DEVIATION}", ""]
         if hasattr(case, "EXPECTED_ORDER"):

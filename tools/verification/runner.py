@@ -11,7 +11,7 @@ import subprocess
 from dataclasses import dataclass, field
 
 from verification.registry import is_hard
-from verification.report import checkout_commit
+from verification.report import checkout_commit, processor
 
 
 @dataclass
@@ -62,6 +62,7 @@ class Result:
     directory: str = ""  # the run's folder (its scene, log, summary and outputs)
     in_float: str = ""  # the fields the run kept in float (summary "precision"); "none" in double
     commit: str = ""  # the checkout verify.py ran from
+    machine: str = ""  # the CPU and cores it ran on
 
 
 def option_grid(case, quick):
@@ -210,13 +211,13 @@ def run_case(case, talus, root, out, quick=False, threads=2, reuse=False, walls=
     rows = run_study(talus, directory, [p[3] for p in planned], threads, jobs, reuse)
 
     results = []
-    commit = checkout_commit()
+    commit, cpu = checkout_commit(), processor()
     previous, ladder_of = None, None
     for (option, shown, resolution, scene), row in zip(planned, rows):
         if shown != ladder_of:
             previous, ladder_of = None, shown  # the ladder starts again for the next option
         result = Result(case.NAME, shown, resolution, tolerance=case.TOLERANCE.get(resolution, float("nan")),
-                        hard=hard, directory=row.get("directory", ""), commit=commit)
+                        hard=hard, directory=row.get("directory", ""), commit=commit, machine=cpu)
         log = ""
         if result.directory and os.path.exists(os.path.join(result.directory, "run.log")):
             with open(os.path.join(result.directory, "run.log")) as f:
