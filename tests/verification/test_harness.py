@@ -191,8 +191,8 @@ class PrecisionComparison(unittest.TestCase):
                                       water_result("still", "precision=mixed, walls=dbc", 0.01, 0.02, in_float=fields, commit="bbb")])
         self.assertFalse(allowed)
         self.assertIn("not run in mixed precision: `dry`", text)
-        self.assertIn("| walls=dbc | 0.02 | 0.05 | 0.055 | +10 % | 0.1 | pass | pass |", text)
-        self.assertIn(f"| `still` | 2 | 2 | {fields} | 2 | 2 | +10 % | bbb |", text)
+        self.assertIn("| walls=dbc | 0.02 | 0.05 | 0.055 | +10 % | +0.05 | 0.1 | pass | pass |", text)
+        self.assertIn(f"| `still` | 2 | 2 | {fields} | 2 | 2 | +0.05 | bbb |", text)
 
     def test_a_rung_failing_only_in_mixed_is_named(self):
         allowed, text = self.compare([water_result("still", "precision=mixed, walls=dbc", 0.02, 0.05),
