@@ -11,7 +11,7 @@ OUT/runs/CASE/variants/, so a stopped verification resumes with --reuse and
   python3 tools/verify.py                 # full ladder, report in docs/verification/
   python3 tools/verify.py --quick         # smallest rung of every case (the test suite runs this)
   python3 tools/verify.py --case hydrostatic_2d --out /tmp/v
-  python3 tools/verify.py --precision mixed --out docs/verification/mixed   # the same cases with fields in float
+  python3 tools/verify.py --precision mixed --no-plots --out docs/verification/mixed   # fields in float
   python3 tools/verify.py --compare-precision docs/verification/mixed       # docs/verification/precision.md
 
 Hard cases (cases/hard_*.py, HARD_CASE = True) are stability runs without a reference: the report's
@@ -50,6 +50,8 @@ def main():
     parser.add_argument("--precision", choices=["double", "mixed"], default=None,
                         help="run every case with this scene \"precision\" (mixed: the fields that allow it in float); "
                              "the option label says so")
+    parser.add_argument("--no-plots", action="store_true",
+                        help="no PNG plot per case (a report beside another, such as the mixed-precision one)")
     parser.add_argument("--compare-precision", metavar="MIXED_OUT", default=None,
                         help="run nothing: compare the report in --out (double) with the one in MIXED_OUT (made with "
                              "--precision mixed) and write OUT/precision.md: every rung side by side, and whether "
@@ -89,7 +91,8 @@ def main():
         results = report.read_previous(out, exclude={c.NAME for c in cases}, known={c.NAME for c in all_cases}) + results
     # An update in place keeps the machine line of the report's own run; the rerun cases say where they ran.
     header = report.stored_machine(out) if args.case and not args.quick else None
-    report.write(results, all_cases if args.case and not args.quick else cases, out, quick=args.quick, header=header)
+    report.write(results, all_cases if args.case and not args.quick else cases, out, quick=args.quick, header=header,
+                 with_plots=not args.no_plots)
     ran = {c.NAME for c in cases}
     known = [r for r in results if r.case in ran and not r.passed and r.known]
     failed = [r for r in results if r.case in ran and not r.passed and not r.known]

@@ -131,7 +131,7 @@ def write(double_csv, mixed_csv, path):
              "its double run by construction.", "",
              f"Double: `{os.path.relpath(double_csv, os.path.dirname(path))}`; mixed: "
              f"`{os.path.relpath(mixed_csv, os.path.dirname(path))}` (`python3 tools/verify.py --precision mixed "
-             "--out docs/verification/mixed --case ...`). Each mixed row names the commit it ran at. Regenerate this "
+             "--no-plots --out docs/verification/mixed`). Each mixed row names the commit it ran at. Regenerate this "
              "page with `python3 tools/verify.py --compare-precision docs/verification/mixed`.", "",
              "## Default", ""]
     if allowed:

@@ -115,7 +115,7 @@ def read_previous(out, exclude, known):
     return results
 
 
-def write(results, cases, out, quick=False, header=None):
+def write(results, cases, out, quick=False, header=None, with_plots=True):
     """The report in out: README.md, results.csv and a plot per case. header is the machine line of the report's
     own run (default: this machine and checkout); a case whose rows ran elsewhere says where."""
     with open(os.path.join(out, "results.csv"), "w", newline="") as f:
@@ -131,37 +131,7 @@ def write(results, cases, out, quick=False, header=None):
     for r in results:
         by_case[r.case].append(r)
     header = header or machine()
-    plots = {}
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        for name, rs in by_case.items():
-            if any(r.hard for r in rs):
-                continue  # stability only: no error to plot against wall time
-            fig, ax = plt.subplots(figsize=(5.5, 4))
-            lines = defaultdict(list)
-            for r in rs:
-                if math.isfinite(r.error) and r.error > 0 and math.isfinite(r.wall):
-                    lines[r.option_label].append((r.wall, r.error))
-            if not lines:
-                plt.close(fig)
-                continue
-            for option, points in sorted(lines.items()):
-                points.sort()
-                ax.loglog([p[0] for p in points], [p[1] for p in points], "o-", label=option)
-            ax.set_xlabel("wall time [s]")
-            ax.set_ylabel("error")
-            ax.set_title(name)
-            ax.grid(True, which="both", alpha=0.3)
-            ax.legend(fontsize=7)
-            fig.tight_layout()
-            path = os.path.join(out, f"{name}.png")
-            fig.savefig(path, dpi=110)
-            plt.close(fig)
-            plots[name] = os.path.basename(path)
-    except ImportError:
-        pass
+    plots = plot_cases(by_case, out) if with_plots else {}
 
     lines = ["# Talus verification report", "",
              f"Machine: {header}.", "",
@@ -217,6 +187,42 @@ def write(results, cases, out, quick=False, header=None):
     with open(os.path.join(out, "README.md"), "w") as f:
         f.write("\n".join(lines))
     print(f"verify: report in {os.path.join(out, 'README.md')}")
+
+
+def plot_cases(by_case, out):
+    """A log-log plot of error against wall time per case with errors (PNG in out): {case: file name}."""
+    plots = {}
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        for name, rs in by_case.items():
+            if any(r.hard for r in rs):
+                continue  # stability only: no error to plot against wall time
+            fig, ax = plt.subplots(figsize=(5.5, 4))
+            lines = defaultdict(list)
+            for r in rs:
+                if math.isfinite(r.error) and r.error > 0 and math.isfinite(r.wall):
+                    lines[r.option_label].append((r.wall, r.error))
+            if not lines:
+                plt.close(fig)
+                continue
+            for option, points in sorted(lines.items()):
+                points.sort()
+                ax.loglog([p[0] for p in points], [p[1] for p in points], "o-", label=option)
+            ax.set_xlabel("wall time [s]")
+            ax.set_ylabel("error")
+            ax.set_title(name)
+            ax.grid(True, which="both", alpha=0.3)
+            ax.legend(fontsize=7)
+            fig.tight_layout()
+            path = os.path.join(out, f"{name}.png")
+            fig.savefig(path, dpi=110)
+            plt.close(fig)
+            plots[name] = os.path.basename(path)
+    except ImportError:
+        pass
+    return plots
 
 
 def hard_case_section(cases, by_case):
