@@ -171,7 +171,8 @@ ParamSet make_scene() {
            "keeps its integrator's saved state in float, and the fluid's velocity, density, pressure, sound speed, "
            "mass and rates where every wall model reads float (dynamic_particles), with no pair_terms and no "
            "three-pass viscosity; dynamic_particles walls with method dbc keep theirs in float. The run prints "
-           "which fields are in float (summary: precision)");
+           "which fields are in float (summary: precision). docs/verification/precision.md compares the two on "
+           "every verification case and gives the reason for the default");
   s.model_list("outputs", "writer", output_common()).optional().doc("writers and probes");
   s.object("checkpoint", checkpoint_params()).optional().doc("restart files");
   s.object("ranks", ranks_params()).optional().doc("the decomposition over MPI ranks (`mpirun -np N talus run`)");
