@@ -5,7 +5,7 @@ import math
 import os
 from collections import defaultdict
 
-from verification.report import cell, fmt
+from verification.report import cell, fmt, number
 
 MIXED_LABEL = "precision=mixed"
 
@@ -22,13 +22,6 @@ def option_without_precision(label):
     """The option label of a mixed run without its precision part, as the double report labels the same run."""
     parts = [p for p in label.split(", ") if p != MIXED_LABEL]
     return ", ".join(parts) or "default"
-
-
-def value(row, key):
-    try:
-        return float(row.get(key) or "nan")
-    except ValueError:
-        return float("nan")
 
 
 def outcome(row):
@@ -71,14 +64,14 @@ def pair_rows(double_rows, mixed_rows):
 
 
 def relative_change(double, mixed):
-    a, b = value(double, "error"), value(mixed, "error")
+    a, b = number(double, "error"), number(mixed, "error")
     return (b - a) / abs(a) if math.isfinite(a) and math.isfinite(b) and a != 0 else float("nan")
 
 
 def change_in_tolerances(double, mixed):
     """(mixed error - double error) / tolerance: how much of the tolerance the precision moves (nan without one).
     Unlike the relative change it stays small where both errors are at round-off."""
-    a, b, tolerance = value(double, "error"), value(mixed, "error"), value(double, "tolerance")
+    a, b, tolerance = number(double, "error"), number(mixed, "error"), number(double, "tolerance")
     return (b - a) / tolerance if math.isfinite(a) and math.isfinite(b) and tolerance > 0 else float("nan")
 
 
@@ -166,10 +159,10 @@ def write(double_csv, mixed_csv, path):
             both = d is not None and m is not None
             change = relative_change(d, m) if both else float("nan")
             share = change_in_tolerances(d, m) if both else float("nan")
-            lines.append(f"| {cell(option)} | {resolution:g} | {fmt(value(d, 'error') if d else None, '.4g')} | "
-                         f"{fmt(value(m, 'error') if m else None, '.4g')} | "
+            lines.append(f"| {cell(option)} | {resolution:g} | {fmt(number(d, 'error') if d else None, '.4g')} | "
+                         f"{fmt(number(m, 'error') if m else None, '.4g')} | "
                          f"{fmt(change * 100, '+.3g') + ' %' if math.isfinite(change) else '—'} | {fmt(share, '+.2g')} | "
-                         f"{fmt(value(d or m, 'tolerance'), '.3g')} | {shown(d)} | {shown(m)} |")
+                         f"{fmt(number(d or m, 'tolerance'), '.3g')} | {shown(d)} | {shown(m)} |")
         failures = [(option, resolution, m["failure"]) for (_, option, resolution), _, m in pairs
                     if m is not None and outcome(m) != "pass"]
         if failures:
