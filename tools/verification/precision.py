@@ -42,7 +42,7 @@ def shown(row):
 def passed(rows):
     """'N passed', with the known deviations among the others counted."""
     known = sum(outcome(r) == "known" for r in rows)
-    return f"{sum(outcome(r) == 'pass' for r in rows)}" + (f" ({known} known deviations)" if known else "")
+    return f"{sum(outcome(r) == 'pass' for r in rows)}" + (f" ({known} known deviation{'s' if known > 1 else ''})" if known else "")
 
 
 def pair_rows(double_rows, mixed_rows):
