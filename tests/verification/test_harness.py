@@ -101,16 +101,22 @@ class RunningMaximum(unittest.TestCase):
 
     def test_reuse_judges_the_stored_run_again_without_running(self):
         first = self.run_drop(0.5, "d")
+        self.assertEqual((first.commit, first.machine), (report.checkout_commit(), report.processor()))
         summary = os.path.join(first.directory, "summary.json")
         stamp = os.stat(summary).st_mtime_ns
+        origin = os.path.join(self.out, "d", "runs", "drop", "origin.json")
+        with open(origin, "w") as f:
+            json.dump({"commit": "0ld0ld0", "machine": "Old CPU, 2 cores"}, f)  # as if the study ran elsewhere
         again = runner.run_case(drop_case(0.01), TALUS, ROOT, os.path.join(self.out, "d"), threads=1, reuse=True)[0]
         self.assertEqual(os.stat(summary).st_mtime_ns, stamp)  # talus did not run
         self.assertTrue(first.stable)
         self.assertFalse(again.stable)  # the stricter limit judged on the same run
         self.assertEqual(again.steps, first.steps)
-        # Without reuse the case starts afresh.
-        runner.run_case(drop_case(0.5), TALUS, ROOT, os.path.join(self.out, "d"), threads=1)
+        self.assertEqual((again.commit, again.machine), ("0ld0ld0", "Old CPU, 2 cores"))  # where the run was made
+        # Without reuse the case starts afresh, from this checkout.
+        fresh = runner.run_case(drop_case(0.5), TALUS, ROOT, os.path.join(self.out, "d"), threads=1)[0]
         self.assertNotEqual(os.stat(summary).st_mtime_ns, stamp)
+        self.assertEqual(fresh.commit, report.checkout_commit())
 
     def test_restart_keeps_the_worst_value(self):
         folder = self.run_drop(0.5, "c").directory

@@ -61,7 +61,7 @@ class Result:
     stable: bool = False  # hard cases: finished, worst() finite and within its limit, every gate passed
     directory: str = ""  # the run's folder (its scene, log, summary and outputs)
     in_float: str = ""  # the fields the run kept in float (summary "precision"); "none" in double
-    commit: str = ""  # the checkout verify.py ran from
+    commit: str = ""  # the checkout verify.py started the run's study from
     machine: str = ""  # the CPU and cores it ran on
 
 
@@ -148,8 +148,17 @@ def run_study(talus, directory, scenes, threads, jobs, reuse):
     study_path, base_path = os.path.join(directory, "study.json"), os.path.join(directory, "base.json")
     variants = os.path.join(directory, "variants")
     stored = [open(p).read() if os.path.exists(p) else None for p in (base_path, study_path)]
-    if not (reuse and stored == [base_text, study_text]):
+    fresh = not (reuse and stored == [base_text, study_text])
+    if fresh:
         shutil.rmtree(variants, ignore_errors=True)
+    # Where the runs come from: this checkout and CPU when the study starts afresh; a reused study keeps what its
+    # start recorded (runs it resumes now are counted to that start).
+    origin_path = os.path.join(directory, "origin.json")
+    if fresh or not os.path.exists(origin_path):
+        with open(origin_path, "w") as f:
+            json.dump({"commit": checkout_commit(), "machine": processor()}, f)
+    with open(origin_path) as f:
+        origin = json.load(f)
     with open(base_path, "w") as f:
         f.write(base_text)
     with open(study_path, "w") as f:
@@ -167,6 +176,7 @@ def run_study(talus, directory, scenes, threads, jobs, reuse):
         rows = json.load(f)["rows"]
     for row in rows:
         row["directory"] = os.path.join(variants, row["variant"])
+        row.update(origin)
     return rows
 
 
@@ -211,13 +221,13 @@ def run_case(case, talus, root, out, quick=False, threads=2, reuse=False, walls=
     rows = run_study(talus, directory, [p[3] for p in planned], threads, jobs, reuse)
 
     results = []
-    commit, cpu = checkout_commit(), processor()
     previous, ladder_of = None, None
     for (option, shown, resolution, scene), row in zip(planned, rows):
         if shown != ladder_of:
             previous, ladder_of = None, shown  # the ladder starts again for the next option
         result = Result(case.NAME, shown, resolution, tolerance=case.TOLERANCE.get(resolution, float("nan")),
-                        hard=hard, directory=row.get("directory", ""), commit=commit, machine=cpu)
+                        hard=hard, directory=row.get("directory", ""), commit=row.get("commit", ""),
+                        machine=row.get("machine", ""))
         log = ""
         if result.directory and os.path.exists(os.path.join(result.directory, "run.log")):
             with open(os.path.join(result.directory, "run.log")) as f:
