@@ -209,6 +209,15 @@ class PrecisionComparison(unittest.TestCase):
         self.assertIn("fails in mixed precision only: `still` walls=dbc 0.01", text)
         self.assertIn("- mixed, walls=dbc 0.01: error 0.2 above tolerance 0.1", text)
 
+    def test_a_deviation_only_mixed_has_blocks_the_default(self):
+        deviation = water_result("still", "precision=mixed, walls=dbc", 0.01, 0.2, passed=False,
+                                 failure="error 0.2 above tolerance 0.1")
+        deviation.known = True
+        allowed, text = self.compare([water_result("still", "precision=mixed, walls=dbc", 0.02, 0.05), deviation,
+                                      water_result("dry", "precision=mixed", 1.0, 0.01)])
+        self.assertFalse(allowed)
+        self.assertIn("fails in mixed precision only: `still` walls=dbc 0.01", text)
+
     def test_every_rung_passing_in_mixed_allows_it_as_default(self):
         allowed, text = self.compare([water_result("still", "precision=mixed, walls=dbc", 0.02, 0.05),
                                       water_result("still", "precision=mixed, walls=dbc", 0.01, 0.02),
