@@ -53,7 +53,7 @@ ParamSet ProbesWriter::describe() {
   p.vector_list("gauges").optional().unit("m").doc(
       "wave gauges: a point on each vertical line (its vertical coordinate is ignored); column NAME_elevation, "
       "the free surface's coordinate along the vertical, found scanning down from the side gravity points away "
-      "from (NaN, with a warning, where the line is dry)");
+      "from, or as gauge_reading says (NaN, with a warning, where the line is dry)");
   p.choice("vertical", {"x", "y", "z"})
       .optional()
       .doc("the axis the gauges measure along; default the axis gravity points along (then required when gravity "
@@ -76,6 +76,12 @@ ParamSet ProbesWriter::describe() {
       .greater_than(0.0)
       .optional()
       .doc("sampling step along a gauge line; default a quarter of the particle spacing");
+  p.choice("gauge_reading", {"surface", "wire"})
+      .default_value("surface")
+      .doc("what the gauges' NAME_elevation is: \"surface\", the highest free surface on the line; \"wire\", what "
+           "a wire wave gauge (capacitance or resistance) reads, the line's lowest wet point plus the length of the "
+           "line in water above it, so that splash flying over the water adds only its own thickness (both agree "
+           "over water wet from its foot up)");
   p.real("gauge_threshold")
       .greater_than(0.0)
       .less_than(1.0)
@@ -187,6 +193,7 @@ ProbesWriter::ProbesWriter(const ParamValues& params) : params_(params) {
   }
   if (params.has("wall_sensor_size")) sensor_size_ = params.real("wall_sensor_size");
   gauge_threshold_ = params.real("gauge_threshold");
+  wire_gauges_ = params.string("gauge_reading") == "wire";
   if (params.has("gauge_step")) gauge_step_ = params.real("gauge_step");
   block_forces_ = params.boolean("block_forces");
   material_masses_ = params.boolean("material_masses");
@@ -324,7 +331,9 @@ std::string ProbesWriter::comment_lines(const OutputContext& context, const Worl
            format_real(world.kernel.support_radius()) + " m\n";
   }
   if (!gauges_.empty()) {
-    out += "# gauges (free-surface elevation along the " + std::string(kAxis[vertical_]) + " axis, up " +
+    out += std::string(wire_gauges_ ? "# gauges (wire reading: lowest wet point plus wet length, "
+                                    : "# gauges (highest free surface, ") +
+           "elevation along the " + std::string(kAxis[vertical_]) + " axis, up " +
            (up_ > 0 ? "+" : "-") + kAxis[vertical_] + ", where sum_j V_j W = " + format_real(gauge_threshold_) +
            ", step " + format_real(gauge_step_) + " m):";
     for (const auto& g : gauges_) out += " " + g.name + "=" + point_text(g.at, world.dim);
@@ -813,15 +822,15 @@ void ProbesWriter::write(const World& world) {
   for (auto& g : gauges_) {
     const std::span<const double> phi(next, g.samples.size());
     next += g.samples.size();
-    g.elevation = surface_elevation(g.samples, phi, vertical_, down, gauge_step_, gauge_threshold_);
-    if (std::isnan(g.elevation) && !g.warned) {
+    g.surface = surface_elevation(g.samples, phi, vertical_, down, gauge_step_, gauge_threshold_);
+    if (std::isnan(g.surface) && !g.warned) {
       g.warned = true;
       if (ranks.rank() == 0)
         world.warnings.add("probes: gauge '" + g.name + "' at " + point_text(g.at, world.dim) +
                            " finds no free surface along " + kAxis[vertical_] + " at t = " + format_real(world.time) +
                            " s (the line is dry): its column reads NaN while it stays dry");
     }
-    put(g.elevation);
+    put(wire_gauges_ ? wire_elevation(g.samples, phi, vertical_, down, gauge_step_, gauge_threshold_) : g.surface);
   }
   put_air_below(world);
   put_surface_speed(world);
@@ -854,16 +863,16 @@ void ProbesWriter::write(const World& world) {
   last_step_ = world.step;
 }
 
-// The air under each surf gauge's surface (the gauges' elevations are those
-// of this row), sampled from the surface down: a second sum over the ranks.
+// The air under each surf gauge's surface (the gauges' highest surfaces are
+// those of this row), sampled from the surface down: a second sum over the ranks.
 void ProbesWriter::put_air_below(const World& world) {
   std::vector<std::vector<Vec3>> lines;
   std::vector<double> phi;
   const double bottom = bottom_;
   for (const auto& g : gauges_)
     if (g.air) {
-      lines.push_back(std::isnan(g.elevation) ? std::vector<Vec3>{}
-                                              : line_samples(g.at, vertical_, g.elevation, bottom, gauge_step_, 1));
+      lines.push_back(std::isnan(g.surface) ? std::vector<Vec3>{}
+                                            : line_samples(g.at, vertical_, g.surface, bottom, gauge_step_, 1));
       const std::size_t at = phi.size();
       phi.resize(at + lines.back().size());
       fill_fractions(sampler_, lines.back(), std::span<double>(phi).subspan(at));
@@ -891,9 +900,9 @@ void ProbesWriter::put_surface_speed(const World& world) {
   for (const auto& g : gauges_) {
     if (!g.air) continue;
     double fastest = -std::numeric_limits<double>::infinity();
-    if (!std::isnan(g.elevation)) {
+    if (!std::isnan(g.surface)) {
       Vec3 surface = g.at;
-      surface[vertical_] = g.elevation;
+      surface[vertical_] = g.surface;
       sampler_.for_each_neighbour(
           surface, [&](Index j, const Vec3&, double) { fastest = std::max(fastest, dot(velocity[j], along)); });
     }

@@ -69,7 +69,7 @@ class ProbesWriter final : public Writer {
     Vec3 at;
     bool warned = false;  // its dry line was reported
     bool air = false;     // a surf gauge of the waves section: also records the air under its surface and its surface speed
-    double elevation = 0.0;  // of the row being written
+    double surface = 0.0;  // the highest free surface on its line, of the row being written
     std::vector<Vec3> samples;  // along its line, from the top down (line_samples)
   };
   struct WallSensor {
@@ -137,6 +137,7 @@ class ProbesWriter final : public Writer {
   double sensor_size_ = 0.0;      // m; 0: the wall particle spacing
   std::size_t sensor_wall_size_ = 0;  // world.boundary.size() when the sensors' particles were selected
   double gauge_step_ = 0.0, gauge_threshold_ = 0.5;
+  bool wire_gauges_ = false;  // the gauges read as wire gauges (wire_elevation), not the highest surface
   int vertical_ = 2;
   double up_ = 1.0;  // +1: up is +vertical_ (gravity along -vertical_)
   double top_ = 0.0, bottom_ = 0.0;  // the gauge lines' ends along vertical_

@@ -121,6 +121,35 @@ inline double surface_elevation(std::span<const Vec3> samples, std::span<const d
   return std::numeric_limits<double>::quiet_NaN();
 }
 
+// What a wire wave gauge (capacitance or resistance) reads along a line
+// sampled as for surface_elevation: the lowest wet point (phi >= threshold)
+// plus the length of the line in water above it. The wet part of each step
+// between samples is placed by linear interpolation of phi, as
+// surface_elevation places the surface, so over one column of water wet from
+// its foot up the two readings agree. Airborne splash adds only its own
+// thickness, a crest over trapped air only its water. NaN when the whole
+// line is dry.
+inline double wire_elevation(std::span<const Vec3> samples, std::span<const double> phi, int axis, double down,
+                             double step, double threshold) {
+  // The wet length of the step between samples a and b (one of them wet).
+  auto wet_part = [&](double a, double b) {
+    if (a >= threshold && b >= threshold) return step;
+    if (a < threshold && b < threshold) return 0.0;
+    const double wet = std::max(a, b), dry = std::min(a, b);
+    return step * (wet - threshold) / (wet - dry);
+  };
+  std::size_t lowest = samples.size();
+  double length = 0.0;
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    if (phi[k] >= threshold) lowest = k;
+    if (k > 0) length += wet_part(phi[k - 1], phi[k]);
+  }
+  if (lowest == samples.size()) return std::numeric_limits<double>::quiet_NaN();
+  double foot = samples[lowest][axis];  // the lowest wet point: below the lowest wet sample where the next is dry
+  if (lowest + 1 < samples.size()) foot += down * wet_part(phi[lowest], phi[lowest + 1]);
+  return foot - down * length;
+}
+
 // Air under the free surface along the same line, sampled by
 // line_samples(at, axis, surface, bottom, step, 1): scanning on down, the
 // length of the first stretch where phi < threshold that has water

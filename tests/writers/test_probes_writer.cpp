@@ -286,6 +286,51 @@ TEST(ProbesWriter, SurfGaugesFindTheAirUnderAnOverturningCrestAndItsSpeed) {
   EXPECT_EQ(std::count(csv.header.begin(), csv.header.end(), "OFF_surface_u"), 0);
 }
 
+// The same tongue over an air gap, read as wire gauges: under the tongue the
+// reading is the water's surface plus the tongue's wet thickness (0.1 + 0.03 m,
+// each surface where phi = 0.5), beside it the flat surface, as the default
+// reading gives it; a surf gauge still finds its air below the highest surface.
+// A lone clump of splash high over the water adds its thickness, not its height.
+TEST(ProbesWriter, WireGaugesAddOnlyTheWaterOnTheirLine) {
+  World w;
+  const double dp = 0.01;
+  w.lo = {0, 0, 0};
+  w.hi = {0.3, 0.3, 0};
+  w.gravity = {0, -9.81, 0};
+  test::fill_lattice(w, 2, w.lo, 30, 10, 1, dp);
+  test::fill_lattice(w, 2, {0, 0.14, 0}, 10, 3, 1, dp);
+  test::fill_lattice(w, 2, {0.2, 0.25, 0}, 4, 2, 1, dp);  // splash: 0.02 m thick, 0.15 m over the water
+  auto read = [&](const std::string& reading) {
+    writers::ProbesWriter writer(params_from_json(
+        writers::ProbesWriter::describe(),
+        R"({"gauges": [[0.28, 0], [0.15, 0], [0.04, 0], [0.22, 0]], "gauge_names": ["OFF", "FLAT", "S1", "SPLASH"],
+            "integrals": [], "waves": {"offshore": "OFF", "surf": ["S1"]}, "gauge_reading": ")" + reading + R"("})",
+        2));
+    TempDir out("probes-wire-" + reading);
+    writer.open(test::context_for(out.str()), w);
+    writer.write(w);
+    return read_csv(out.file("scene_probes.csv"));
+  };
+  const Csv surface = read("surface"), wire = read("wire");
+  ASSERT_EQ(wire.rows.size(), 1u);
+  const auto& r = wire.rows[0];
+  std::cout << "wire: under the tongue " << r[column(wire, "S1_elevation")] << " m, under the splash "
+            << r[column(wire, "SPLASH_elevation")] << " m (surface reading "
+            << surface.rows[0][column(surface, "SPLASH_elevation")] << " m)\n";
+  EXPECT_NEAR(r[column(wire, "S1_elevation")], 0.13, 0.1 * dp);
+  EXPECT_NEAR(r[column(wire, "S1_air_below")], 0.04, 0.1 * dp);
+  EXPECT_NEAR(r[column(wire, "FLAT_elevation")], surface.rows[0][column(surface, "FLAT_elevation")], 1e-12);
+  EXPECT_NEAR(r[column(wire, "FLAT_elevation")], 0.1, 0.1 * dp);
+  // The splash clump's phi peaks below 1 (a kernel support is wider than it): its wet thickness is under its
+  // 0.02 m, and the surface reading sits on top of it.
+  EXPECT_NEAR(surface.rows[0][column(surface, "SPLASH_elevation")], 0.27, 0.5 * dp);
+  EXPECT_GT(r[column(wire, "SPLASH_elevation")], 0.1 - 0.1 * dp);
+  EXPECT_LT(r[column(wire, "SPLASH_elevation")], 0.12 + 0.1 * dp);
+  EXPECT_NE(std::find_if(wire.comments.begin(), wire.comments.end(),
+                         [](const std::string& c) { return c.find("wire reading") != std::string::npos; }),
+            wire.comments.end());
+}
+
 // The waves' direction runs from the offshore gauge to the first surf gauge,
 // and every surf gauge stands ahead of the offshore gauge.
 TEST(ProbesWriter, SurfGaugesMustStandAheadOfTheOffshoreGauge) {
