@@ -253,16 +253,23 @@ TEST(ProbesWriter, BedGaugesFindOneMaterialsSurfaceAndItsChange) {
 // The waves run along -x (offshore gauge at 0.28 m): the water moves at
 // 0.2 m/s that way, the tongue at 0.5 m/s, one particle at the tongue's foot
 // at 0.9 m/s but more than a kernel support below the tongue's surface.
-TEST(ProbesWriter, SurfGaugesFindTheAirUnderAnOverturningCrestAndItsSpeed) {
-  TempDir dir("probes-air");
-  World w;
-  const double dp = 0.01;
+// A 2D tank 0.3 m long of water to 0.1 m and a tongue from 0.14 to 0.17 m over
+// x < 0.1 m; returns the number of the water's particles (the tongue's follow).
+std::size_t tongue_over_water(World& w, double dp) {
   w.lo = {0, 0, 0};
   w.hi = {0.3, 0.3, 0};
   w.gravity = {0, -9.81, 0};
   test::fill_lattice(w, 2, w.lo, 30, 10, 1, dp);
   const std::size_t water = w.fluid.size();
   test::fill_lattice(w, 2, {0, 0.14, 0}, 10, 3, 1, dp);
+  return water;
+}
+
+TEST(ProbesWriter, SurfGaugesFindTheAirUnderAnOverturningCrestAndItsSpeed) {
+  TempDir dir("probes-air");
+  World w;
+  const double dp = 0.01;
+  const std::size_t water = tongue_over_water(w, dp);
   auto velocity = w.fluid.vector("velocity");
   for (std::size_t i = 0; i < w.fluid.size(); ++i) velocity[i] = {i < water ? -0.2 : -0.5, 0.01, 0};
   velocity[water - 30 + 4] = {-0.9, 0, 0};  // the top row of the water at x = 0.045, under the tongue
@@ -294,11 +301,7 @@ TEST(ProbesWriter, SurfGaugesFindTheAirUnderAnOverturningCrestAndItsSpeed) {
 TEST(ProbesWriter, WireGaugesAddOnlyTheWaterOnTheirLine) {
   World w;
   const double dp = 0.01;
-  w.lo = {0, 0, 0};
-  w.hi = {0.3, 0.3, 0};
-  w.gravity = {0, -9.81, 0};
-  test::fill_lattice(w, 2, w.lo, 30, 10, 1, dp);
-  test::fill_lattice(w, 2, {0, 0.14, 0}, 10, 3, 1, dp);
+  tongue_over_water(w, dp);
   test::fill_lattice(w, 2, {0.2, 0.25, 0}, 4, 2, 1, dp);  // splash: 0.02 m thick, 0.15 m over the water
   auto read = [&](const std::string& reading) {
     writers::ProbesWriter writer(params_from_json(
