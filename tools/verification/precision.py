@@ -3,7 +3,6 @@ pass, and what that says about the default precision (verify.py --compare-precis
 import csv
 import math
 import os
-from collections import defaultdict
 
 from verification.report import cell, fmt, number
 
@@ -50,9 +49,7 @@ def pair_rows(double_rows, mixed_rows):
     double report's order, mixed rows keyed by (option without precision, resolution); mixed rows the double report
     lacks come last."""
     mixed = {(r["case"], option_without_precision(r["option"]), float(r["resolution"])): r for r in mixed_rows}
-    cases = defaultdict(list)
-    for name in sorted({r["case"] for r in double_rows + mixed_rows}):
-        cases[name]  # the cases in name order, as the report has them
+    cases = {name: [] for name in sorted({r["case"] for r in double_rows + mixed_rows})}  # as the report orders them
     seen = set()
     for r in double_rows:
         key = (r["case"], r["option"], float(r["resolution"]))
