@@ -57,6 +57,13 @@ struct FluidFieldsOf {
 };
 using FluidFields = FluidFieldsOf<double>;
 
+// 1/rho as every pass reads it, from the column or formed in place: divided
+// in double, kept in the fluid's type.
+template <class Real>
+Real reciprocal(Real rho) {
+  return static_cast<Real>(1.0 / rho);
+}
+
 // Whether the fluid's seven fields are kept in float.
 inline bool fluid_in_float(const ParticleStore& s) { return s.info("density").type == FieldType::scalar_f32; }
 

@@ -5,6 +5,7 @@
 // once per evaluation, into one template instantiation; nothing in the pair
 // loop branches on them.
 #include <cmath>
+#include <span>
 #include <type_traits>
 
 #include "fluid_fields.hpp"
@@ -43,7 +44,7 @@ sph::MutualPassResult run_force_pass(const PassContext<Real, NB>& ctx, const Ter
     s.v = f.v[i];
     s.m = f.m[i];
     s.rho = f.rho[i];
-    s.inv_rho = ctx.nb.inv_density[i];
+    s.inv_rho = reciprocal(f.rho[i]);
     s.p = f.p[i];
     s.c = f.c[i];
     s.mu = mu ? mu[f.mat[i]] : ctx.nb.viscosity[i];
@@ -87,17 +88,23 @@ bool one_mass_and_material(const FluidFieldsOf<Real>& f) {
   return other == 0;
 }
 
-// The fluid's fields side by side, for the mutual pass to gather (float only).
-const sph::NeighbourRecord* fill_records(const FluidFieldsOf<float>& f, std::vector<sph::NeighbourRecord>& records) {
+// The fluid's fields side by side, for the mutual pass to gather, in the
+// scratch (what it held is gone).
+template <class Real>
+const sph::NeighbourRecordOf<Real>* fill_records(const FluidFieldsOf<Real>& f, SharedScratch& scratch) {
   const std::size_t n = f.rho.size();
-  records.resize(n + 1);  // the spare the gather's last load reads into
-  sph::NeighbourRecord* r = records.data();
+  // The spare record the gather's last load may read into.
+  const std::span<sph::NeighbourRecordOf<Real>> r = scratch.hold<sph::NeighbourRecordOf<Real>>(n + 1);
+  r[n] = {};
 #pragma omp parallel for schedule(static) if (n >= sph::parallel_min)
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec3f v = f.v[i];
-    r[i] = {v.x, v.y, v.z, f.rho[i], f.p[i], f.c[i]};
+    const VectorOf<Real> v = f.v[i];
+    if constexpr (std::is_same_v<Real, float>)
+      r[i] = {v.x, v.y, v.z, f.rho[i], f.p[i], f.c[i]};
+    else
+      r[i] = {v.x, v.y, v.z, f.rho[i]};
   }
-  return r;
+  return r.data();
 }
 
 }  // namespace
@@ -107,18 +114,21 @@ void WcsphStage::refresh_reciprocals(World& world) {
   with_fluid_fields(world.fluid, [&](auto f) {
     const std::size_t n = f.rho.size();
     using Real = typename decltype(f.rho)::value_type;
-    auto& inv_rho = inv_rho_.as<Real>();
-    inv_rho.resize(n);
+    const std::span<Real> inv_rho = fluid_scratch_.hold<Real>(n);
 #pragma omp parallel for schedule(static) if (n >= 4096)
-    for (std::size_t i = 0; i < n; ++i) inv_rho[i] = static_cast<Real>(1.0 / f.rho[i]);
+    for (std::size_t i = 0; i < n; ++i) inv_rho[i] = reciprocal(f.rho[i]);
   });
 }
 
-std::uint64_t WcsphStage::fluid_pass(World& world) {
+// The three-pass viscosity reads mu_eff per particle: the general fields.
+bool WcsphStage::fluid_pass_gathers_records(World& world) const {
+  return !per_particle_viscosity_ && with_fluid_fields(world.fluid, [](auto f) { return one_mass_and_material(f); });
+}
+
+std::uint64_t WcsphStage::fluid_pass(World& world, bool gather_records) {
   const sph::MutualPassResult result = with_fluid_fields(world.fluid, [&](auto f) {
     using Real = typename decltype(f.rho)::value_type;
     auto nb = f.neighbours();
-    nb.inv_density = inv_rho_.as<Real>().data();
     // The three-pass viscosity's force pass reads mu_eff of both particles; start() then takes mu_eff[i].
     if (per_particle_viscosity_) nb.viscosity = world.fluid.scalar("mu_eff").data();
     const double delta_h_c0 = delta_ * h_ * c0_max_;
@@ -132,19 +142,15 @@ std::uint64_t WcsphStage::fluid_pass(World& world) {
         return passed.evaluations;
       });
     };
-    // The three-pass viscosity reads mu_eff per particle: the general fields.
-    if (!per_particle_viscosity_ && one_mass_and_material(f)) {
+    if (gather_records) {
       sph::UniformNeighbourFields<Real> uniform{nb};
       uniform.mass_of_all = f.m[0];
       uniform.material_of_all = f.mat[0];
-      if constexpr (std::is_same_v<Real, float>) {
-        sph::GatheredNeighbourFields gathered{uniform};
-        gathered.record = fill_records(f, records_);
-        run(gathered);
-      } else {
-        run(uniform);
-      }
+      sph::GatheredNeighbourFields<Real> gathered{uniform};
+      gathered.record = fill_records(f, fluid_scratch_);
+      run(gathered);
     } else {
+      nb.inv_density = reciprocals<Real>().data();
       run(nb);
     }
     return passed;
@@ -199,12 +205,16 @@ void WcsphStage::compute_rates(World& world) {
     world.parallel().refresh_halo(world.fluid, density);
     update_pressure(world);
   }
-  refresh_reciprocals(world);
+  // 1/rho and the records take turns in one scratch: the fused pass forms
+  // j's 1/rho from its record, and every other pass reads the column.
+  const bool gather_records = fluid_pass_gathers_records(world);
+  if (!gather_records) refresh_reciprocals(world);
   if (per_particle_viscosity_) {
     pairs_total_ += strain_rate_pass(world);
     apparent_viscosity_pass(world);
   }
-  pairs_total_ += fluid_pass(world);
+  pairs_total_ += fluid_pass(world, gather_records);
+  if (gather_records) refresh_reciprocals(world);
   rates_visc_max_ = 0.0;
   pairs_total_ += wall_passes(world);
   if (!pair_terms_.empty()) {

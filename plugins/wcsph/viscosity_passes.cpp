@@ -91,7 +91,7 @@ std::uint64_t WcsphStage::strain_rate_pass(World& world) {
   FluidFields f(world.fluid);
   auto shear = world.fluid.scalar("shear_rate");
   sph::Neighbours nb = f.neighbours();
-  nb.inv_density = inv_rho_.as<double>().data();
+  nb.inv_density = reciprocals<double>().data();
   const int dim = world.dim;
   auto start = [&](Index i) {
     StrainSums s;
@@ -133,7 +133,7 @@ void WcsphStage::apparent_viscosity_pass(World& world) {
   }
   // The bound is over this rank's own particles (halo rows have part of their neighbours).
   const std::size_t owned = world.fluid.owned_size();
-  const std::vector<double>& inv_rho = inv_rho_.as<double>();  // the three passes keep the fluid in double
+  const std::span<const double> inv_rho = reciprocals<double>();  // the three passes keep the fluid in double
   double nu_max = 0.0;
   if (point_implicit_) {
     // Inertia 1 + dt D_i; the explicit viscous bound then sees nu_i / (1 + dt D_i).

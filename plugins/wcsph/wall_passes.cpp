@@ -115,7 +115,7 @@ sph::FluidView WcsphStage::fluid_view(World& world) const {
   if (fluid_in_float(s)) {
     const FluidFieldsOf<float> f(s);
     fluid.single = f.neighbours();
-    fluid.single.inv_density = inv_rho_.as<float>().data();
+    fluid.single.inv_density = reciprocals<float>().data();
     return fluid;
   }
   const FluidFields f(s);
@@ -124,7 +124,7 @@ sph::FluidView WcsphStage::fluid_view(World& world) const {
   fluid.pressure = f.p;
   fluid.sound_speed = f.c;
   fluid.mass = f.m;
-  fluid.inv_density = inv_rho_.as<double>();
+  fluid.inv_density = reciprocals<double>();
   return fluid;
 }
 

@@ -19,16 +19,17 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "talus/neighbour_grid.hpp"
-#include "talus/scratch_column.hpp"
 #include "talus/sph/boundary_pass.hpp"
 #include "talus/sph/fluid_terms.hpp"
 #include "talus/sph/mutual_pass.hpp"
 #include "talus/sph/pair_term.hpp"
 #include "talus/stage.hpp"
+#include "shared_scratch.hpp"
 #include "viscosity_term.hpp"
 
 namespace talus::wcsph {
@@ -84,8 +85,17 @@ class WcsphStage final : public Stage {
   // stiff_viscosity point_implicit (viscosity_passes.cpp): divide each particle's
   // acceleration by its inertia factor 1 + dt D_i after all passes.
   void scale_stiff_particles(World& world);
+  // 1/rho per fluid particle into the shared scratch, for the passes that
+  // read it from a column (every pass but the fused one when it gathers records).
   void refresh_reciprocals(World& world);
-  std::uint64_t fluid_pass(World& world);
+  template <class Real>
+  std::span<const Real> reciprocals() const {
+    return fluid_scratch_.held<Real>();
+  }
+  // Whether the fused fluid pass reads j's fields from records: a fluid of one
+  // mass and one material, without the three-pass viscosity.
+  bool fluid_pass_gathers_records(World& world) const;
+  std::uint64_t fluid_pass(World& world, bool gather_records);
   ViscositySettings viscosity_settings(const World& world) const;
   // The fluid-wall passes (wall_passes.cpp): every wall model's wall-side hook,
   // then the fluid against each of its wall sets, then its direct forces.
@@ -132,8 +142,7 @@ class WcsphStage final : public Stage {
   sph::FluidSettings settings_;
   NeighbourGrid cells_;
   Vec3 period_;  // domain length on periodic axes (lever arms of rigid-body wall sets)
-  ScratchColumn inv_rho_;  // 1/rho per fluid particle, refilled every evaluation (grow only)
-  std::vector<sph::NeighbourRecord> records_;  // the fluid's fields side by side (mixed precision, one material)
+  SharedScratch fluid_scratch_;  // the fused pass's neighbour records, then 1/rho (shared_scratch.hpp)
   // The largest |v_ij.x_ij|/(r^2+eta^2), 1/s, of the fluid pass and of the
   // wall passes and pair terms (FluidRates::visc_max).
   double fluid_visc_max_ = 0.0, rates_visc_max_ = 0.0;

@@ -365,7 +365,7 @@ TEST_P(MutualPass, RecordsGiveTheBitsOfTheFloatColumns) {
                                               inv_rho.data(), nullptr}};
   columns.mass_of_all = m[0];
   columns.material_of_all = 1;
-  sph::GatheredNeighbourFields gathered{columns};
+  sph::GatheredNeighbourFields<float> gathered{columns};
   gathered.record = records.data();
   gathered.velocity = nullptr;  // a read of any column would crash
   gathered.density = gathered.pressure = gathered.sound_speed = gathered.inv_density = nullptr;
@@ -386,7 +386,54 @@ TEST_P(MutualPass, RecordsGiveTheBitsOfTheFloatColumns) {
     };
   };
   using Columns = decltype(columns);
-  using Records = sph::GatheredNeighbourFields;
+  using Records = sph::GatheredNeighbourFields<float>;
+  same(sph::PressureForce{columns}, sph::ArtificialViscosity{columns, 0.1 * h}, sph::Continuity{columns},
+       sph::DensityDiffusion<true, Columns>{columns, delta_h_c0, g})(
+      sph::PressureForce{gathered}, sph::ArtificialViscosity{gathered, 0.1 * h}, sph::Continuity{gathered},
+      sph::DensityDiffusion<true, Records>{gathered, delta_h_c0, g});
+  same(sph::LaminarViscosity<false, Columns>{columns, cloud.mu_of_material, eta2},
+       sph::DensityDiffusion<false, Columns>{columns, delta_h_c0, g})(
+      sph::LaminarViscosity<false, Records>{gathered, cloud.mu_of_material, eta2},
+      sph::DensityDiffusion<false, Records>{gathered, delta_h_c0, g});
+}
+
+// The same in double: the records hold v and rho, the terms read p and c
+// from their columns, and the rates are those of the double columns bit for
+// bit.
+TEST_P(MutualPass, RecordsGiveTheBitsOfTheDoubleColumns) {
+  const std::size_t n = cloud.x.size();
+  std::vector<sph::NeighbourRecordDouble> records(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    cloud.m[i] = cloud.m[0];
+    cloud.mat[i] = 1;
+    records[i] = {cloud.v[i].x, cloud.v[i].y, cloud.v[i].z, cloud.rho[i]};
+  }
+  use_material_viscosities();
+  sph::UniformNeighbourFields<double> columns{cloud.nb()};
+  columns.mass_of_all = cloud.m[0];
+  columns.material_of_all = 1;
+  sph::GatheredNeighbourFields<double> gathered{columns};
+  gathered.record = records.data();
+  gathered.velocity = nullptr;  // a read of any of these columns would crash
+  gathered.density = gathered.inv_density = nullptr;
+  const double h = kernel.h(), eta2 = sph::laminar_eta2(h), delta_h_c0 = 0.1 * h * 30.0;
+  const Vec3 g{0, -9.81, 0};
+  auto same = [&](const auto&... on_columns) {
+    return [&](const auto&... on_records) {
+      Rates want = zero_rates(n), got = zero_rates(n, 9.0);
+      auto start = [&](Index i) { return start_of(cloud, i); };
+      want.visc_max = sph::mutual_pair_pass(grid, kernel, want.out(), n, start, [](Index) {}, on_columns...).visc_max;
+      ASSERT_GT(largest(want.acc) + largest(want.drho), 0.0);
+      got.visc_max = sph::mutual_pair_pass(grid, kernel, got.out(), n, start, [](Index) {}, on_records...).visc_max;
+      for (std::size_t i = 0; i < n; ++i) {
+        ASSERT_EQ(got.acc[i], want.acc[i]) << i;
+        ASSERT_EQ(got.drho[i], want.drho[i]) << i;
+      }
+      EXPECT_EQ(got.visc_max, want.visc_max);
+    };
+  };
+  using Columns = decltype(columns);
+  using Records = sph::GatheredNeighbourFields<double>;
   same(sph::PressureForce{columns}, sph::ArtificialViscosity{columns, 0.1 * h}, sph::Continuity{columns},
        sph::DensityDiffusion<true, Columns>{columns, delta_h_c0, g})(
       sph::PressureForce{gathered}, sph::ArtificialViscosity{gathered, 0.1 * h}, sph::Continuity{gathered},
@@ -441,6 +488,28 @@ TEST(NeighbourRecords, GatherEachLanesOwnFields) {
     EXPECT_EQ(lanes.p[k], r.p) << k;
     EXPECT_EQ(lanes.c[k], r.c) << k;
     EXPECT_EQ(lanes.inv_rho[k], static_cast<float>(1.0 / r.rho)) << k;  // as the stage's column
+  }
+}
+
+// Records of doubles: each lane its own record's v, rho and 1/rho, past a
+// whole four and eight.
+TEST(NeighbourRecords, GatherEachLanesOwnFieldsInDouble) {
+  std::vector<sph::NeighbourRecordDouble> records(40);
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const double f = static_cast<double>(i);
+    records[i] = {f + 0.1, f + 0.2, f + 0.3, 1000.0 + f / 3.0};
+  }
+  const int n = 13;
+  Index j[16] = {39, 0, 7, 7, 21, 3, 38, 12, 5, 30, 1, 16, 9, 39, 39, 39};
+  sph::GatheredLanes<16> lanes{};
+  sph::gather_records(records.data(), j, n, lanes);
+  for (int k = 0; k < n; ++k) {
+    const sph::NeighbourRecordDouble& r = records[j[k]];
+    EXPECT_EQ(lanes.vx[k], r.vx) << k;
+    EXPECT_EQ(lanes.vy[k], r.vy) << k;
+    EXPECT_EQ(lanes.vz[k], r.vz) << k;
+    EXPECT_EQ(lanes.rho[k], r.rho) << k;
+    EXPECT_EQ(lanes.inv_rho[k], 1.0 / r.rho) << k;  // as the stage's column
   }
 }
 

@@ -28,7 +28,7 @@ set(flags -std=c++20 -O3 -DNDEBUG -march=${MARCH} -fopenmp -fopt-info-vec-optimi
 foreach(dir IN LISTS INCLUDES)
   list(APPEND flags -I${dir})
 endforeach()
-foreach(terms 1 2 3 4 5)
+foreach(terms 1 2 3 4 5 6)
   execute_process(COMMAND ${CXX} ${flags} -DTERMS=${terms} -c ${SOURCE} -o ${WORK}/vectorised_pair_lanes_${terms}.o
                   RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE report)
   if(NOT result EQUAL 0)

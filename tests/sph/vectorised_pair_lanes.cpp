@@ -6,20 +6,21 @@
 // fluid in float (mixed precision); TERMS 4: the same on a fluid of one
 // material and one mass (sph::UniformNeighbourFields); TERMS 5: the same
 // from neighbour records (sph::GatheredNeighbourFields), as the dam break
-// runs in mixed precision.
+// runs in mixed precision; TERMS 6: the dam break's set from records of
+// doubles, as it runs in double.
 #include "fluid_sums.hpp"
 #include "talus/sph/fluid_terms.hpp"
 #include "talus/sph/mutual_pass.hpp"
 
 namespace talus {
 
-#if TERMS >= 3
+#if TERMS >= 3 && TERMS <= 5
 using Stored = float;
 #else
 using Stored = double;
 #endif
-#if TERMS == 5
-using Fields = sph::GatheredNeighbourFields;
+#if TERMS >= 5
+using Fields = sph::GatheredNeighbourFields<Stored>;
 #elif TERMS == 4
 using Fields = sph::UniformNeighbourFields<Stored>;
 #else

@@ -70,12 +70,14 @@ TALUS_PAIR_INLINE std::int32_t material_at(const UniformNeighbourFields<Real>& n
   return nb.material_of_all;
 }
 
-// The neighbours of a pass of one material and one mass, in float, whose
-// fields the mutual pass gathers from `record` (filled from the columns
-// before the pass: neighbour_records.hpp) into each pair's Pair::j_state.
-// The values are the columns', and so are the results, bit for bit.
-struct GatheredNeighbourFields : UniformNeighbourFields<float> {
-  const NeighbourRecord* record = nullptr;
+// The neighbours of a pass of one material and one mass whose fields the
+// mutual pass gathers from `record` (filled from the columns before the
+// pass: neighbour_records.hpp) into each pair's Pair::j_state: all of them
+// in float; in double all but p and c, which the terms read from their
+// columns. The values are the columns', and so are the results, bit for bit.
+template <class Real>
+struct GatheredNeighbourFields : UniformNeighbourFields<Real> {
+  const NeighbourRecordOf<Real>* record = nullptr;
 };
 
 // j's velocity, density, pressure, sound speed and 1/rho, as the terms read them.
@@ -99,11 +101,23 @@ template <class Real>
 TALUS_PAIR_INLINE double inv_density_at(const NeighbourFields<Real>& nb, const Pair& q) {
   return nb.inv_density[q.j];
 }
-TALUS_PAIR_INLINE Vec3 velocity_at(const GatheredNeighbourFields&, const Pair& q) { return q.j_state.v; }
-TALUS_PAIR_INLINE double density_at(const GatheredNeighbourFields&, const Pair& q) { return q.j_state.rho; }
-TALUS_PAIR_INLINE double pressure_at(const GatheredNeighbourFields&, const Pair& q) { return q.j_state.p; }
-TALUS_PAIR_INLINE double sound_speed_at(const GatheredNeighbourFields&, const Pair& q) { return q.j_state.c; }
-TALUS_PAIR_INLINE double inv_density_at(const GatheredNeighbourFields&, const Pair& q) { return q.j_state.inv_rho; }
+template <class Real>
+TALUS_PAIR_INLINE Vec3 velocity_at(const GatheredNeighbourFields<Real>&, const Pair& q) { return q.j_state.v; }
+template <class Real>
+TALUS_PAIR_INLINE double density_at(const GatheredNeighbourFields<Real>&, const Pair& q) { return q.j_state.rho; }
+// p and c: from the records in float, from the columns in double.
+TALUS_PAIR_INLINE double pressure_at(const GatheredNeighbourFields<float>&, const Pair& q) { return q.j_state.p; }
+TALUS_PAIR_INLINE double sound_speed_at(const GatheredNeighbourFields<float>&, const Pair& q) { return q.j_state.c; }
+TALUS_PAIR_INLINE double pressure_at(const GatheredNeighbourFields<double>& nb, const Pair& q) {
+  return nb.pressure[q.j];
+}
+TALUS_PAIR_INLINE double sound_speed_at(const GatheredNeighbourFields<double>& nb, const Pair& q) {
+  return nb.sound_speed[q.j];
+}
+template <class Real>
+TALUS_PAIR_INLINE double inv_density_at(const GatheredNeighbourFields<Real>&, const Pair& q) {
+  return q.j_state.inv_rho;
+}
 
 // Symmetric pressure force, momentum conserving (Monaghan 2005 eq. 3.6; rock-
 // fluid seed eq. 14 in this form):  a_i += -sum_j m_j (p_i + p_j)/(rho_i rho_j) grad.

@@ -21,8 +21,9 @@
 // p, c, mu, kh, mat) and the sums acc, drho, visc of that one pair.
 //
 // Terms whose neighbours are GatheredNeighbourFields (fluid_terms.hpp) read
-// j's fields from records: each chunk of lanes gathers them eight records at
-// a time before the terms run, and hands them on in Pair::j_state.
+// j's fields from records: each chunk of lanes gathers them (eight records at
+// a time in float, four in double) before the terms run, and hands them on
+// in Pair::j_state.
 #pragma once
 
 #include <algorithm>
@@ -90,12 +91,12 @@ inline void keep_owned(NeighbourHits& h, std::size_t owned) {
 
 // The records the terms of a pass read j's fields from (the first term's
 // that has them; every such term of a pass has the same), or none.
-template <class Term>
-const NeighbourRecord* records_of(const Term& term) {
+template <class Term, class... Rest>
+auto records_of(const Term& term, const Rest&... rest) {
   if constexpr (ReadsRecords<Term>)
     return term.nb.record;
   else
-    return nullptr;
+    return records_of(rest...);
 }
 template <class... Terms>
 constexpr bool gathers_records = (ReadsRecords<Terms> || ...);
@@ -136,8 +137,7 @@ template <bool NeedValue, bool NeedGradient, class S, class Out, class... Terms>
   const int n = h.count;
   constexpr bool gather = gathers_records<Terms...>;
   if constexpr (gather) {
-    const NeighbourRecord* records = nullptr;
-    ((records = records ? records : records_of(terms)), ...);
+    const auto* records = records_of(terms...);
     for (int k = n; k % 8 != 0; ++k) h.j[k] = h.j[0];  // whole eights: the spare lanes load a real record
     gather_records(records, h.j, n, L.gathered);
   }

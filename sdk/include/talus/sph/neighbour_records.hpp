@@ -1,16 +1,24 @@
 // Neighbour records: the fields a fluid pair reads of its neighbour j, side by
-// side in one 24-byte record per particle, and their gather into a pass's
-// lanes. From the columns, a chunk of pairs costs one load and one insert per
-// field and pair; from records, eight pairs' fields come in with eight
-// 32-byte loads and an 8 x 8 transpose. Each load also reads the first two
-// fields of the next record, which the transpose drops: an array of records
-// ends with one spare. 1/rho is not kept but formed in the lanes as the
-// stage forms its column, float(1/rho): the same value, for 4 bytes less a
-// particle. Float only: a record of doubles would be 48 bytes a particle,
-// more memory than the loads it saves are worth.
+// side in one record per particle, and their gather into a pass's lanes. From
+// the columns, a chunk of pairs costs one load and one insert per field and
+// pair; from records, a few loads and a transpose bring in several pairs'
+// fields at once. 1/rho is not kept but formed in the lanes as the stage
+// forms its column, Real(1/rho): the same value, for a field less a record.
+//
+// In float (mixed precision) a record holds v, rho, p and c in 24 bytes:
+// eight pairs come in with eight 32-byte loads and an 8 x 8 transpose. Each
+// load also reads the first two fields of the next record, which the
+// transpose drops: an array of records ends with one spare.
+//
+// In double a record holds v and rho in 32 bytes, aligned so that it never
+// straddles a cache line: four pairs come in with four aligned loads and a
+// 4 x 4 transpose, and p and c stay in their columns. Their 16 bytes more
+// would take the record past half a cache line, and the run past the
+// memory it is allowed (the speed case's 260 bytes a particle, issue 23).
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 
 #if defined(__AVX2__)
 #include <immintrin.h>
@@ -20,9 +28,15 @@
 
 namespace talus::sph {
 
+// Trivial types: a pass fills its records in scratch it does not clear.
 struct NeighbourRecord {
-  float vx = 0, vy = 0, vz = 0, rho = 0, p = 0, c = 0;
+  float vx, vy, vz, rho, p, c;
 };
+struct alignas(32) NeighbourRecordDouble {
+  double vx, vy, vz, rho;
+};
+template <class Real>
+using NeighbourRecordOf = std::conditional_t<std::is_same_v<Real, float>, NeighbourRecord, NeighbourRecordDouble>;
 
 // A term that reads j's fields from records (its neighbours are
 // GatheredNeighbourFields, fluid_terms.hpp): only the mutual pass gathers them.
@@ -100,6 +114,37 @@ TALUS_PAIR_INLINE void gather_records(const NeighbourRecord* records, const Inde
     out.p[k] = r.p;
     out.c[k] = r.c;
     out.inv_rho[k] = static_cast<float>(1.0 / r.rho);
+  }
+#endif
+}
+
+// The same from records of doubles: v, rho and 1/rho (p and c the terms read
+// from their columns), four lanes at a time; no spare record is read.
+template <int Size>
+TALUS_PAIR_INLINE void gather_records(const NeighbourRecordDouble* records, const Index* j, int n,
+                                      GatheredLanes<Size>& out) {
+  static_assert(Size % 8 == 0, "lanes are gathered eight at a time");
+#if defined(__AVX2__)
+  for (int k = 0; k < n; k += 4) {
+    __m256d a[4];
+    for (int l = 0; l < 4; ++l) a[l] = _mm256_load_pd(&records[j[k + l]].vx);
+    const __m256d a01l = _mm256_unpacklo_pd(a[0], a[1]), a01h = _mm256_unpackhi_pd(a[0], a[1]);
+    const __m256d a23l = _mm256_unpacklo_pd(a[2], a[3]), a23h = _mm256_unpackhi_pd(a[2], a[3]);
+    const __m256d rho = _mm256_permute2f128_pd(a01h, a23h, 0x31);
+    _mm256_storeu_pd(out.vx + k, _mm256_permute2f128_pd(a01l, a23l, 0x20));
+    _mm256_storeu_pd(out.vy + k, _mm256_permute2f128_pd(a01h, a23h, 0x20));
+    _mm256_storeu_pd(out.vz + k, _mm256_permute2f128_pd(a01l, a23l, 0x31));
+    _mm256_storeu_pd(out.rho + k, rho);
+    _mm256_storeu_pd(out.inv_rho + k, _mm256_div_pd(_mm256_set1_pd(1.0), rho));
+  }
+#else
+  for (int k = 0; k < n; ++k) {
+    const NeighbourRecordDouble& r = records[j[k]];
+    out.vx[k] = r.vx;
+    out.vy[k] = r.vy;
+    out.vz[k] = r.vz;
+    out.rho[k] = r.rho;
+    out.inv_rho[k] = 1.0 / r.rho;
   }
 #endif
 }
