@@ -203,6 +203,40 @@ class MutualPass : public ::testing::TestWithParam<Layout> {
     expect_same_rates(mutual(cloud, grid, kernel, term), want);
   }
 
+  // same_rates(terms...)(other_terms...): the mutual pass gives the same
+  // rates with either set of terms, bit for bit (the first set acts).
+  auto same_rates(const auto&... on_columns) {
+    return [&, this](const auto&... on_records) {
+      const std::size_t n = cloud.x.size();
+      Rates want = zero_rates(n), got = zero_rates(n, 9.0);
+      auto start = [&](Index i) { return start_of(cloud, i); };
+      want.visc_max = sph::mutual_pair_pass(grid, kernel, want.out(), n, start, [](Index) {}, on_columns...).visc_max;
+      ASSERT_GT(largest(want.acc) + largest(want.drho), 0.0);
+      got.visc_max = sph::mutual_pair_pass(grid, kernel, got.out(), n, start, [](Index) {}, on_records...).visc_max;
+      for (std::size_t i = 0; i < n; ++i) {
+        ASSERT_EQ(got.acc[i], want.acc[i]) << i;
+        ASSERT_EQ(got.drho[i], want.drho[i]) << i;
+      }
+      EXPECT_EQ(got.visc_max, want.visc_max);
+    };
+  }
+
+  // The dam break's terms, then the laminar set, on the columns and on the
+  // records: the same rates bit for bit.
+  template <class Columns, class Records>
+  void expect_records_match_columns(const Columns& columns, const Records& gathered) {
+    const double h = kernel.h(), eta2 = sph::laminar_eta2(h), delta_h_c0 = 0.1 * h * 30.0;
+    const Vec3 g{0, -9.81, 0};
+    same_rates(sph::PressureForce{columns}, sph::ArtificialViscosity{columns, 0.1 * h}, sph::Continuity{columns},
+               sph::DensityDiffusion<true, Columns>{columns, delta_h_c0, g})(
+        sph::PressureForce{gathered}, sph::ArtificialViscosity{gathered, 0.1 * h}, sph::Continuity{gathered},
+        sph::DensityDiffusion<true, Records>{gathered, delta_h_c0, g});
+    same_rates(sph::LaminarViscosity<false, Columns>{columns, cloud.mu_of_material, eta2},
+               sph::DensityDiffusion<false, Columns>{columns, delta_h_c0, g})(
+        sph::LaminarViscosity<false, Records>{gathered, cloud.mu_of_material, eta2},
+        sph::DensityDiffusion<false, Records>{gathered, delta_h_c0, g});
+  }
+
   // Sums carry mu = mu_eff[i]: with the materials' values, as for a Newtonian fluid.
   void use_material_viscosities() {
     for (std::size_t i = 0; i < cloud.x.size(); ++i) cloud.mu_eff[i] = cloud.mu_of_material[cloud.mat[i]];
@@ -369,32 +403,7 @@ TEST_P(MutualPass, RecordsGiveTheBitsOfTheFloatColumns) {
   gathered.record = records.data();
   gathered.velocity = nullptr;  // a read of any column would crash
   gathered.density = gathered.pressure = gathered.sound_speed = gathered.inv_density = nullptr;
-  const double h = kernel.h(), eta2 = sph::laminar_eta2(h), delta_h_c0 = 0.1 * h * 30.0;
-  const Vec3 g{0, -9.81, 0};
-  auto same = [&](const auto&... on_columns) {
-    return [&](const auto&... on_records) {
-      Rates want = zero_rates(n), got = zero_rates(n, 9.0);
-      auto start = [&](Index i) { return start_of(cloud, i); };
-      want.visc_max = sph::mutual_pair_pass(grid, kernel, want.out(), n, start, [](Index) {}, on_columns...).visc_max;
-      ASSERT_GT(largest(want.acc) + largest(want.drho), 0.0);
-      got.visc_max = sph::mutual_pair_pass(grid, kernel, got.out(), n, start, [](Index) {}, on_records...).visc_max;
-      for (std::size_t i = 0; i < n; ++i) {
-        ASSERT_EQ(got.acc[i], want.acc[i]) << i;
-        ASSERT_EQ(got.drho[i], want.drho[i]) << i;
-      }
-      EXPECT_EQ(got.visc_max, want.visc_max);
-    };
-  };
-  using Columns = decltype(columns);
-  using Records = sph::GatheredNeighbourFields<float>;
-  same(sph::PressureForce{columns}, sph::ArtificialViscosity{columns, 0.1 * h}, sph::Continuity{columns},
-       sph::DensityDiffusion<true, Columns>{columns, delta_h_c0, g})(
-      sph::PressureForce{gathered}, sph::ArtificialViscosity{gathered, 0.1 * h}, sph::Continuity{gathered},
-      sph::DensityDiffusion<true, Records>{gathered, delta_h_c0, g});
-  same(sph::LaminarViscosity<false, Columns>{columns, cloud.mu_of_material, eta2},
-       sph::DensityDiffusion<false, Columns>{columns, delta_h_c0, g})(
-      sph::LaminarViscosity<false, Records>{gathered, cloud.mu_of_material, eta2},
-      sph::DensityDiffusion<false, Records>{gathered, delta_h_c0, g});
+  expect_records_match_columns(columns, gathered);
 }
 
 // The same in double: the records hold v and rho, the terms read p and c
@@ -416,32 +425,7 @@ TEST_P(MutualPass, RecordsGiveTheBitsOfTheDoubleColumns) {
   gathered.record = records.data();
   gathered.velocity = nullptr;  // a read of any of these columns would crash
   gathered.density = gathered.inv_density = nullptr;
-  const double h = kernel.h(), eta2 = sph::laminar_eta2(h), delta_h_c0 = 0.1 * h * 30.0;
-  const Vec3 g{0, -9.81, 0};
-  auto same = [&](const auto&... on_columns) {
-    return [&](const auto&... on_records) {
-      Rates want = zero_rates(n), got = zero_rates(n, 9.0);
-      auto start = [&](Index i) { return start_of(cloud, i); };
-      want.visc_max = sph::mutual_pair_pass(grid, kernel, want.out(), n, start, [](Index) {}, on_columns...).visc_max;
-      ASSERT_GT(largest(want.acc) + largest(want.drho), 0.0);
-      got.visc_max = sph::mutual_pair_pass(grid, kernel, got.out(), n, start, [](Index) {}, on_records...).visc_max;
-      for (std::size_t i = 0; i < n; ++i) {
-        ASSERT_EQ(got.acc[i], want.acc[i]) << i;
-        ASSERT_EQ(got.drho[i], want.drho[i]) << i;
-      }
-      EXPECT_EQ(got.visc_max, want.visc_max);
-    };
-  };
-  using Columns = decltype(columns);
-  using Records = sph::GatheredNeighbourFields<double>;
-  same(sph::PressureForce{columns}, sph::ArtificialViscosity{columns, 0.1 * h}, sph::Continuity{columns},
-       sph::DensityDiffusion<true, Columns>{columns, delta_h_c0, g})(
-      sph::PressureForce{gathered}, sph::ArtificialViscosity{gathered, 0.1 * h}, sph::Continuity{gathered},
-      sph::DensityDiffusion<true, Records>{gathered, delta_h_c0, g});
-  same(sph::LaminarViscosity<false, Columns>{columns, cloud.mu_of_material, eta2},
-       sph::DensityDiffusion<false, Columns>{columns, delta_h_c0, g})(
-      sph::LaminarViscosity<false, Records>{gathered, cloud.mu_of_material, eta2},
-      sph::DensityDiffusion<false, Records>{gathered, delta_h_c0, g});
+  expect_records_match_columns(columns, gathered);
 }
 
 // On several MPI ranks the last rows are halo copies, whose rates are not
