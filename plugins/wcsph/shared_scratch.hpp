@@ -6,6 +6,7 @@
 // never straddles a cache line.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <memory>
 #include <new>
@@ -27,11 +28,13 @@ class SharedScratch {
     static_assert(std::is_trivially_default_constructible_v<T> && std::is_trivially_destructible_v<T>,
                   "the scratch holds trivial types only");
     static_assert(alignof(T) <= alignment);
-    if (n * sizeof(T) > capacity_) {
+    // Never empty: the lifetimes begin in real storage even for n = 0.
+    const std::size_t bytes = std::max(n * sizeof(T), alignment);
+    if (bytes > capacity_) {
       bytes_.reset();
       capacity_ = 0;
-      bytes_.reset(static_cast<std::byte*>(::operator new(n * sizeof(T), std::align_val_t{alignment})));
-      capacity_ = n * sizeof(T);
+      bytes_.reset(static_cast<std::byte*>(::operator new(bytes, std::align_val_t{alignment})));
+      capacity_ = bytes;
     }
     T* first = ::new (static_cast<void*>(bytes_.get())) T[n];  // default-initialised: no code
     held_ = &typeid(T);

@@ -1,14 +1,19 @@
 // Unit tests of the wcsph stage's pieces: momentum conservation of the
 // symmetric force terms, the Fourtakas diffusion on a hydrostatic field,
 // summation density, the time-step bound, the integrators on free fall, the
-// dynamic boundary particles, and the stage's input errors.
+// dynamic boundary particles, the stage's input errors and its shared scratch.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <random>
+#include <span>
+#include <stdexcept>
 
+#include "shared_scratch.hpp"
 #include "sph_world.hpp"
 #include "talus/error.hpp"
+#include "talus/sph/neighbour_records.hpp"
 
 namespace {
 
@@ -310,4 +315,23 @@ TEST(PairTerms, AddToTheRatesOverEveryNeighbour) {
   bool listed = false;
   for (const auto& pass : pushed->stage->plan(pushed->world).passes) listed = listed || pass == "pair term pass: push";
   EXPECT_TRUE(listed);
+}
+
+// The stage's shared scratch: one array at a time, aligned for the records,
+// and a read as a type it no longer holds refused (passes out of order).
+TEST(SharedScratch, HoldsOneArrayAtATime) {
+  talus::wcsph::SharedScratch scratch;
+  EXPECT_THROW(scratch.held<double>(), std::logic_error);  // nothing held yet
+  const std::span<double> inv_rho = scratch.hold<double>(10);
+  for (std::size_t i = 0; i < inv_rho.size(); ++i) inv_rho[i] = 1.0 / (1000.0 + static_cast<double>(i));
+  EXPECT_EQ(scratch.held<double>().size(), 10u);
+  EXPECT_EQ(scratch.held<double>()[3], 1.0 / 1003.0);
+  EXPECT_THROW(scratch.held<float>(), std::logic_error);
+  const std::span<talus::sph::NeighbourRecordDouble> records = scratch.hold<talus::sph::NeighbourRecordDouble>(7);
+  EXPECT_EQ(records.size(), 7u);
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(records.data()) % talus::wcsph::SharedScratch::alignment, 0u);
+  EXPECT_THROW(scratch.held<double>(), std::logic_error);  // the records took the 1/rho column's place
+  EXPECT_EQ(scratch.held<talus::sph::NeighbourRecordDouble>().data(), records.data());
+  EXPECT_EQ(scratch.hold<float>(0).size(), 0u);  // an empty array is held too
+  EXPECT_NO_THROW(scratch.held<float>());
 }
