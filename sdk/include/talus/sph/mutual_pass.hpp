@@ -27,6 +27,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 
 #include <omp.h>
@@ -91,6 +92,7 @@ inline void keep_owned(NeighbourHits& h, std::size_t owned) {
 
 // The records the terms of a pass read j's fields from (the first term's
 // that has them; every such term of a pass has the same), or none.
+inline std::nullptr_t records_of() { return nullptr; }
 template <class Term, class... Rest>
 auto records_of(const Term& term, const Rest&... rest) {
   if constexpr (ReadsRecords<Term>)
@@ -100,6 +102,21 @@ auto records_of(const Term& term, const Rest&... rest) {
 }
 template <class... Terms>
 constexpr bool gathers_records = (ReadsRecords<Terms> || ...);
+
+// j's state from lane k, with the fields its kind of record holds: all in
+// float; in double p and c stay in their columns, which the terms read.
+template <int Size>
+TALUS_PAIR_INLINE NeighbourState lane_state(const GatheredLanes<Size>& g, int k, const NeighbourRecord*) {
+  return {Vec3{g.vx[k], g.vy[k], g.vz[k]}, g.rho[k], g.p[k], g.c[k], g.inv_rho[k]};
+}
+template <int Size>
+TALUS_PAIR_INLINE NeighbourState lane_state(const GatheredLanes<Size>& g, int k, const NeighbourRecordDouble*) {
+  NeighbourState state;
+  state.v = Vec3{g.vx[k], g.vy[k], g.vz[k]};
+  state.rho = g.rho[k];
+  state.inv_rho = g.inv_rho[k];
+  return state;
+}
 
 // Each lane's shares for i and for j: local to the evaluation, so the
 // compiler can tell that the terms' reads of the particle fields never meet
@@ -136,8 +153,8 @@ template <bool NeedValue, bool NeedGradient, class S, class Out, class... Terms>
   NeighbourHits& h = L.hits;
   const int n = h.count;
   constexpr bool gather = gathers_records<Terms...>;
+  [[maybe_unused]] const auto records = records_of(terms...);  // nullptr when the terms read columns
   if constexpr (gather) {
-    const auto* records = records_of(terms...);
     for (int k = n; k % 8 != 0; ++k) h.j[k] = h.j[0];  // whole eights: the spare lanes load a real record
     gather_records(records, h.j, n, L.gathered);
   }
@@ -169,10 +186,7 @@ template <bool NeedValue, bool NeedGradient, class S, class Out, class... Terms>
       q.dw_r = L.dw_r[k];
       q.inv_r2e = L.inv_r2e[k];
     }
-    if constexpr (gather) {
-      const GatheredLanes<PairLanes::size>& g = L.gathered;
-      q.j_state = {Vec3{g.vx[k], g.vy[k], g.vz[k]}, g.rho[k], g.p[k], g.c[k], g.inv_rho[k]};
-    }
+    if constexpr (gather) q.j_state = lane_state(L.gathered, k, records);
     LaneSums<S> si(state);
     PairReaction rj;
     (terms.mutual(q, si, rj), ...);
