@@ -98,11 +98,10 @@ const sph::NeighbourRecordOf<Real>* fill_records(const FluidFieldsOf<Real>& f, S
   r[n] = {};
 #pragma omp parallel for schedule(static) if (n >= sph::parallel_min)
   for (std::size_t i = 0; i < n; ++i) {
-    const VectorOf<Real> v = f.v[i];
     if constexpr (std::is_same_v<Real, float>)
-      r[i] = {v.x, v.y, v.z, f.rho[i], f.p[i], f.c[i]};
+      r[i] = {f.v[i].x, f.v[i].y, f.v[i].z, f.rho[i], f.p[i], f.c[i]};
     else
-      r[i] = {v.x, v.y, v.z, f.rho[i]};
+      r[i] = {f.rho[i], f.p[i], f.c[i], reciprocal(f.rho[i])};
   }
   return r.data();
 }

@@ -406,16 +406,15 @@ TEST_P(MutualPass, RecordsGiveTheBitsOfTheFloatColumns) {
   expect_records_match_columns(columns, gathered);
 }
 
-// The same in double: the records hold v and rho, the terms read p and c
-// from their columns, and the rates are those of the double columns bit for
-// bit.
+// The same in double: the records hold rho, p, c and 1/rho, v comes from
+// its column, and the rates are those of the double columns bit for bit.
 TEST_P(MutualPass, RecordsGiveTheBitsOfTheDoubleColumns) {
   const std::size_t n = cloud.x.size();
   std::vector<sph::NeighbourRecordDouble> records(n);
   for (std::size_t i = 0; i < n; ++i) {
     cloud.m[i] = cloud.m[0];
     cloud.mat[i] = 1;
-    records[i] = {cloud.v[i].x, cloud.v[i].y, cloud.v[i].z, cloud.rho[i]};
+    records[i] = {cloud.rho[i], cloud.p[i], cloud.c[i], cloud.inv_rho[i]};
   }
   use_material_viscosities();
   sph::UniformNeighbourFields<double> columns{cloud.nb()};
@@ -423,8 +422,7 @@ TEST_P(MutualPass, RecordsGiveTheBitsOfTheDoubleColumns) {
   columns.material_of_all = 1;
   sph::GatheredNeighbourFields<double> gathered{columns};
   gathered.record = records.data();
-  gathered.velocity = nullptr;  // a read of any of these columns would crash
-  gathered.density = gathered.inv_density = nullptr;
+  gathered.density = gathered.pressure = gathered.sound_speed = gathered.inv_density = nullptr;  // a read would crash
   expect_records_match_columns(columns, gathered);
 }
 
@@ -475,25 +473,30 @@ TEST(NeighbourRecords, GatherEachLanesOwnFields) {
   }
 }
 
-// Records of doubles: each lane its own record's v, rho and 1/rho, past a
-// whole four and eight.
+// Records of doubles: each lane its own record's rho, p, c and 1/rho and
+// its own row of the velocity column, past a whole four and eight, up to
+// the column's last row.
 TEST(NeighbourRecords, GatherEachLanesOwnFieldsInDouble) {
   std::vector<sph::NeighbourRecordDouble> records(40);
+  std::vector<Vec3> velocity(40);
   for (std::size_t i = 0; i < records.size(); ++i) {
     const double f = static_cast<double>(i);
-    records[i] = {f + 0.1, f + 0.2, f + 0.3, 1000.0 + f / 3.0};
+    records[i] = {1000.0 + f / 3.0, 50.0 * f, 30.0 + f, 1.0 / (1000.0 + f / 3.0)};
+    velocity[i] = Vec3{f + 0.1, f + 0.2, f + 0.3};
   }
   const int n = 13;
   Index j[16] = {39, 0, 7, 7, 21, 3, 38, 12, 5, 30, 1, 16, 9, 39, 39, 39};
   sph::GatheredLanes<16> lanes{};
-  sph::gather_records(records.data(), j, n, lanes);
+  sph::gather_records(records.data(), velocity.data(), j, n, lanes);
   for (int k = 0; k < n; ++k) {
     const sph::NeighbourRecordDouble& r = records[j[k]];
-    EXPECT_EQ(lanes.vx[k], r.vx) << k;
-    EXPECT_EQ(lanes.vy[k], r.vy) << k;
-    EXPECT_EQ(lanes.vz[k], r.vz) << k;
+    EXPECT_EQ(lanes.vx[k], velocity[j[k]].x) << k;
+    EXPECT_EQ(lanes.vy[k], velocity[j[k]].y) << k;
+    EXPECT_EQ(lanes.vz[k], velocity[j[k]].z) << k;
     EXPECT_EQ(lanes.rho[k], r.rho) << k;
-    EXPECT_EQ(lanes.inv_rho[k], 1.0 / r.rho) << k;  // as the stage's column
+    EXPECT_EQ(lanes.p[k], r.p) << k;
+    EXPECT_EQ(lanes.c[k], r.c) << k;
+    EXPECT_EQ(lanes.inv_rho[k], r.inv_rho) << k;
   }
 }
 

@@ -72,9 +72,9 @@ TALUS_PAIR_INLINE std::int32_t material_at(const UniformNeighbourFields<Real>& n
 
 // The neighbours of a pass of one material and one mass whose fields the
 // mutual pass gathers from `record` (filled from the columns before the
-// pass: neighbour_records.hpp) into each pair's Pair::j_state: all of them
-// in float; in double all but p and c, which the terms read from their
-// columns. The values are the columns', and so are the results, bit for bit.
+// pass: neighbour_records.hpp), in double with v from its column, into each
+// pair's Pair::j_state. The values are the columns', and so are the results,
+// bit for bit.
 template <class Real>
 struct GatheredNeighbourFields : UniformNeighbourFields<Real> {
   const NeighbourRecordOf<Real>* record = nullptr;
@@ -105,14 +105,13 @@ template <class Real>
 TALUS_PAIR_INLINE Vec3 velocity_at(const GatheredNeighbourFields<Real>&, const Pair& q) { return q.j_state.v; }
 template <class Real>
 TALUS_PAIR_INLINE double density_at(const GatheredNeighbourFields<Real>&, const Pair& q) { return q.j_state.rho; }
-// p and c: from the records in float, from the columns in double.
-TALUS_PAIR_INLINE double pressure_at(const GatheredNeighbourFields<float>&, const Pair& q) { return q.j_state.p; }
-TALUS_PAIR_INLINE double sound_speed_at(const GatheredNeighbourFields<float>&, const Pair& q) { return q.j_state.c; }
-TALUS_PAIR_INLINE double pressure_at(const GatheredNeighbourFields<double>& nb, const Pair& q) {
-  return nb.pressure[q.j];
+template <class Real>
+TALUS_PAIR_INLINE double pressure_at(const GatheredNeighbourFields<Real>&, const Pair& q) {
+  return q.j_state.p;
 }
-TALUS_PAIR_INLINE double sound_speed_at(const GatheredNeighbourFields<double>& nb, const Pair& q) {
-  return nb.sound_speed[q.j];
+template <class Real>
+TALUS_PAIR_INLINE double sound_speed_at(const GatheredNeighbourFields<Real>&, const Pair& q) {
+  return q.j_state.c;
 }
 template <class Real>
 TALUS_PAIR_INLINE double inv_density_at(const GatheredNeighbourFields<Real>&, const Pair& q) {

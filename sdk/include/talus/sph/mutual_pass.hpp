@@ -22,8 +22,8 @@
 //
 // Terms whose neighbours are GatheredNeighbourFields (fluid_terms.hpp) read
 // j's fields from records: each chunk of lanes gathers them (eight records at
-// a time in float, four in double) before the terms run, and hands them on
-// in Pair::j_state.
+// a time in float, four in double, with v from its column) before the terms
+// run, and hands them on in Pair::j_state.
 #pragma once
 
 #include <algorithm>
@@ -90,32 +90,27 @@ inline void keep_owned(NeighbourHits& h, std::size_t owned) {
   h.count = kept;
 }
 
-// The records the terms of a pass read j's fields from (the first term's
-// that has them; every such term of a pass has the same), or none.
+// The neighbour fields of the terms of a pass that read j's fields from
+// records (the first such term's; every one of a pass has the same), or none.
 inline std::nullptr_t records_of() { return nullptr; }
 template <class Term, class... Rest>
 auto records_of(const Term& term, const Rest&... rest) {
   if constexpr (ReadsRecords<Term>)
-    return term.nb.record;
+    return &term.nb;
   else
     return records_of(rest...);
 }
 template <class... Terms>
 constexpr bool gathers_records = (ReadsRecords<Terms> || ...);
 
-// j's state from lane k, with the fields its kind of record holds: all in
-// float; in double p and c stay in their columns, which the terms read.
-template <int Size>
-TALUS_PAIR_INLINE NeighbourState lane_state(const GatheredLanes<Size>& g, int k, const NeighbourRecord*) {
-  return {Vec3{g.vx[k], g.vy[k], g.vz[k]}, g.rho[k], g.p[k], g.c[k], g.inv_rho[k]};
-}
-template <int Size>
-TALUS_PAIR_INLINE NeighbourState lane_state(const GatheredLanes<Size>& g, int k, const NeighbourRecordDouble*) {
-  NeighbourState state;
-  state.v = Vec3{g.vx[k], g.vy[k], g.vz[k]};
-  state.rho = g.rho[k];
-  state.inv_rho = g.inv_rho[k];
-  return state;
+// j's fields into the lanes: from the records alone in float; in double
+// v comes from its column.
+template <class NB, int Size>
+TALUS_PAIR_INLINE void gather_neighbours(const NB& nb, const Index* j, int n, GatheredLanes<Size>& out) {
+  if constexpr (std::is_same_v<decltype(nb.record), const NeighbourRecord*>)
+    gather_records(nb.record, j, n, out);
+  else
+    gather_records(nb.record, nb.velocity, j, n, out);
 }
 
 // Each lane's shares for i and for j: local to the evaluation, so the
@@ -156,7 +151,7 @@ template <bool NeedValue, bool NeedGradient, class S, class Out, class... Terms>
   [[maybe_unused]] const auto records = records_of(terms...);  // nullptr when the terms read columns
   if constexpr (gather) {
     for (int k = n; k % 8 != 0; ++k) h.j[k] = h.j[0];  // whole eights: the spare lanes load a real record
-    gather_records(records, h.j, n, L.gathered);
+    gather_neighbours(*records, h.j, n, L.gathered);
   }
   if constexpr (NeedValue)
     for (int k = 0; k < n; ++k) {
@@ -186,7 +181,10 @@ template <bool NeedValue, bool NeedGradient, class S, class Out, class... Terms>
       q.dw_r = L.dw_r[k];
       q.inv_r2e = L.inv_r2e[k];
     }
-    if constexpr (gather) q.j_state = lane_state(L.gathered, k, records);
+    if constexpr (gather) {
+      const GatheredLanes<PairLanes::size>& g = L.gathered;
+      q.j_state = {Vec3{g.vx[k], g.vy[k], g.vz[k]}, g.rho[k], g.p[k], g.c[k], g.inv_rho[k]};
+    }
     LaneSums<S> si(state);
     PairReaction rj;
     (terms.mutual(q, si, rj), ...);

@@ -2,19 +2,21 @@
 // side in one record per particle, and their gather into a pass's lanes. From
 // the columns, a chunk of pairs costs one load and one insert per field and
 // pair; from records, a few loads and a transpose bring in several pairs'
-// fields at once. 1/rho is not kept but formed in the lanes as the stage
-// forms its column, Real(1/rho): the same value, for a field less a record.
+// fields at once.
 //
 // In float (mixed precision) a record holds v, rho, p and c in 24 bytes:
 // eight pairs come in with eight 32-byte loads and an 8 x 8 transpose. Each
 // load also reads the first two fields of the next record, which the
-// transpose drops: an array of records ends with one spare.
+// transpose drops: an array of records ends with one spare. 1/rho is formed
+// in the lanes as the stage forms its column, float(1/rho).
 //
-// In double a record holds v and rho in 32 bytes, aligned so that it never
-// straddles a cache line: four pairs come in with four aligned loads and a
-// 4 x 4 transpose, and p and c stay in their columns. Their 16 bytes more
-// would take the record past half a cache line, and the run past the
-// memory it is allowed (the speed case's 260 bytes a particle, issue 23).
+// In double a record holds rho, p, c and 1/rho in 32 bytes, aligned so that
+// it never straddles a cache line, and v stays in its column: four pairs
+// come in with four aligned loads, four masked loads of v and two 4 x 4
+// transposes. A pair then touches about two cache lines of j's instead of
+// four from the columns. v in the record as well would take it past half a
+// cache line, and the run past the memory it is allowed (the speed case's
+// 260 bytes a particle, issue 23).
 #pragma once
 
 #include <cstdint>
@@ -25,6 +27,7 @@
 #endif
 
 #include "talus/config.hpp"
+#include "talus/vec3.hpp"
 
 namespace talus::sph {
 
@@ -33,7 +36,7 @@ struct NeighbourRecord {
   float vx, vy, vz, rho, p, c;
 };
 struct alignas(32) NeighbourRecordDouble {
-  double vx, vy, vz, rho;
+  double rho, p, c, inv_rho;
 };
 template <class Real>
 using NeighbourRecordOf = std::conditional_t<std::is_same_v<Real, float>, NeighbourRecord, NeighbourRecordDouble>;
@@ -118,33 +121,43 @@ TALUS_PAIR_INLINE void gather_records(const NeighbourRecord* records, const Inde
 #endif
 }
 
-// The same from records of doubles: v, rho and 1/rho (p and c the terms read
-// from their columns), four lanes at a time; no spare record is read.
+// The same in double: rho, p, c and 1/rho from the records and v from its
+// column, four lanes at a time; nothing past either array is read.
 template <int Size>
-TALUS_PAIR_INLINE void gather_records(const NeighbourRecordDouble* records, const Index* j, int n,
-                                      GatheredLanes<Size>& out) {
+TALUS_PAIR_INLINE void gather_records(const NeighbourRecordDouble* records, const Vec3* velocity, const Index* j,
+                                      int n, GatheredLanes<Size>& out) {
   static_assert(Size % 8 == 0, "lanes are gathered eight at a time");
+  static_assert(sizeof(Vec3) == 3 * sizeof(double));
 #if defined(__AVX2__)
+  const __m256i xyz = _mm256_setr_epi64x(-1, -1, -1, 0);
   for (int k = 0; k < n; k += 4) {
-    __m256d a[4];
-    for (int l = 0; l < 4; ++l) a[l] = _mm256_load_pd(&records[j[k + l]].vx);
+    __m256d a[4], v[4];
+    for (int l = 0; l < 4; ++l) {
+      a[l] = _mm256_load_pd(&records[j[k + l]].rho);
+      v[l] = _mm256_maskload_pd(&velocity[j[k + l]].x, xyz);
+    }
     const __m256d a01l = _mm256_unpacklo_pd(a[0], a[1]), a01h = _mm256_unpackhi_pd(a[0], a[1]);
     const __m256d a23l = _mm256_unpacklo_pd(a[2], a[3]), a23h = _mm256_unpackhi_pd(a[2], a[3]);
-    const __m256d rho = _mm256_permute2f128_pd(a01h, a23h, 0x31);
-    _mm256_storeu_pd(out.vx + k, _mm256_permute2f128_pd(a01l, a23l, 0x20));
-    _mm256_storeu_pd(out.vy + k, _mm256_permute2f128_pd(a01h, a23h, 0x20));
-    _mm256_storeu_pd(out.vz + k, _mm256_permute2f128_pd(a01l, a23l, 0x31));
-    _mm256_storeu_pd(out.rho + k, rho);
-    _mm256_storeu_pd(out.inv_rho + k, _mm256_div_pd(_mm256_set1_pd(1.0), rho));
+    _mm256_storeu_pd(out.rho + k, _mm256_permute2f128_pd(a01l, a23l, 0x20));
+    _mm256_storeu_pd(out.p + k, _mm256_permute2f128_pd(a01h, a23h, 0x20));
+    _mm256_storeu_pd(out.c + k, _mm256_permute2f128_pd(a01l, a23l, 0x31));
+    _mm256_storeu_pd(out.inv_rho + k, _mm256_permute2f128_pd(a01h, a23h, 0x31));
+    const __m256d v01l = _mm256_unpacklo_pd(v[0], v[1]), v01h = _mm256_unpackhi_pd(v[0], v[1]);
+    const __m256d v23l = _mm256_unpacklo_pd(v[2], v[3]), v23h = _mm256_unpackhi_pd(v[2], v[3]);
+    _mm256_storeu_pd(out.vx + k, _mm256_permute2f128_pd(v01l, v23l, 0x20));
+    _mm256_storeu_pd(out.vy + k, _mm256_permute2f128_pd(v01h, v23h, 0x20));
+    _mm256_storeu_pd(out.vz + k, _mm256_permute2f128_pd(v01l, v23l, 0x31));
   }
 #else
   for (int k = 0; k < n; ++k) {
     const NeighbourRecordDouble& r = records[j[k]];
-    out.vx[k] = r.vx;
-    out.vy[k] = r.vy;
-    out.vz[k] = r.vz;
+    out.vx[k] = velocity[j[k]].x;
+    out.vy[k] = velocity[j[k]].y;
+    out.vz[k] = velocity[j[k]].z;
     out.rho[k] = r.rho;
-    out.inv_rho[k] = 1.0 / r.rho;
+    out.p[k] = r.p;
+    out.c[k] = r.c;
+    out.inv_rho[k] = r.inv_rho;
   }
 #endif
 }
