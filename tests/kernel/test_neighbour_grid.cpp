@@ -366,6 +366,33 @@ TEST(NeighbourGrid, QueriesFromEmptyRegionsOfASparseGrid) {
   }
 }
 
+// A row of cells is skipped when its cells lie beyond the reach across it:
+// a point at the near corner of a row one and two cells off in y and z, just
+// inside the reach (1e-10 of r^2), is still found, from above and below.
+TEST(NeighbourGrid, FindsPointsAtTheNearCornerOfARowJustWithinReach) {
+  const double radius = 0.1, cell = 0.05;  // 20 cells an axis on the unit box
+  NeighbourGrid grid;
+  grid.configure(3, {0, 0, 0}, {1, 1, 1}, radius);
+  std::vector<Vec3> queries, pos;
+  for (int sy : {-1, 1})
+    for (int sz : {-1, 1})
+      for (double angle : {0.3, 0.785, 1.2}) {
+        const double a = radius * std::sqrt(1.0 - 1e-10) * std::cos(angle);
+        const double b = radius * std::sqrt(1.0 - 1e-10) * std::sin(angle);
+        // The near edges of the row, on cell boundaries: y = 10 cells, z = 9 cells.
+        const double ey = 10 * cell, ez = 9 * cell;
+        queries.push_back({0.5, ey - sy * a, ez - sz * b});
+        pos.push_back({0.5, ey + sy * 1e-12, ez + sz * 1e-12});  // just inside the row's cells
+      }
+  grid.build(pos);
+  for (std::size_t q = 0; q < queries.size(); ++q) {
+    bool found = false;
+    grid.for_each_neighbour(queries[q], radius, [&](Index j, const Vec3&, double) { found = found || j == q; });
+    ASSERT_LT(norm2(queries[q] - pos[q]), radius * radius) << q;
+    EXPECT_TRUE(found) << "query " << q;
+  }
+}
+
 TEST(NeighbourGrid, RefusesARadiusBeyondTheLastLevel) {
   NeighbourGrid grid;
   grid.configure(2, {0, 0, 0}, {1, 1, 0}, 0.1);
