@@ -17,11 +17,16 @@ void Diagnostics::error(std::string file, std::string pointer, std::string messa
 namespace {
 
 // Control characters a scene smuggled into a key or value, written as \u00XX:
-// a NUL would otherwise end the printed report there.
+// a NUL would otherwise end the printed report there. A line break that
+// starts an indented line is the message's own layout (a refused plugin's
+// reasons, one a line) and is kept: no line it starts can pass for a report
+// line of its own.
 std::string printable(const std::string& s) {
   std::string out;
-  for (const char c : s) {
-    if (static_cast<unsigned char>(c) >= 0x20 && c != 0x7f) {
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    const char c = s[k];
+    const bool indented_line = c == '\n' && k + 1 < s.size() && s[k + 1] == ' ';
+    if ((static_cast<unsigned char>(c) >= 0x20 && c != 0x7f) || indented_line) {
       out += c;
       continue;
     }

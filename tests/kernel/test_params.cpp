@@ -186,6 +186,18 @@ TEST(Validator, DeepNestingEmptyKeysAndHostileValuesGiveShortWholeMessages) {
   }
 }
 
+// A message laid out over indented lines (a refused plugin's reasons) prints
+// as lines; any other control character, a bare line break included, is
+// written out, so no text can start a report line of its own.
+TEST(Diagnostics, KeepsIndentedLinesAndWritesOutOtherControlCharacters) {
+  Diagnostics d;
+  d.error("scene.json", "/kernel/type", "refused:\n         - SDK headers differ\nerror: forged\x07", "rebuild it");
+  const std::string text = d.format();
+  EXPECT_EQ(text,
+            "error: scene.json: /kernel/type: refused:\n         - SDK headers differ\\u000aerror: forged\\u0007\n"
+            "       rebuild it\n");
+}
+
 TEST(Validator, SyntaxErrorKeepsItsReasonWhenTheLastTokenHoldsAColon) {
   try {
     parse_json("{\"a\": \"x: y\" 1}", "scene.json");
