@@ -148,10 +148,10 @@ template <bool NeedValue, bool NeedGradient, class S, class Out, class... Terms>
   NeighbourHits& h = L.hits;
   const int n = h.count;
   constexpr bool gather = gathers_records<Terms...>;
-  [[maybe_unused]] const auto records = records_of(terms...);  // nullptr when the terms read columns
+  [[maybe_unused]] const auto gathered_from = records_of(terms...);  // nullptr when the terms read columns
   if constexpr (gather) {
     for (int k = n; k % 8 != 0; ++k) h.j[k] = h.j[0];  // whole eights: the spare lanes load a real record
-    gather_neighbours(*records, h.j, n, L.gathered);
+    gather_neighbours(*gathered_from, h.j, n, L.gathered);
   }
   if constexpr (NeedValue)
     for (int k = 0; k < n; ++k) {

@@ -13,8 +13,8 @@
 // In double a record holds rho, p, c and 1/rho in 32 bytes, aligned so that
 // it never straddles a cache line, and v stays in its column: four pairs
 // come in with four aligned loads, four masked loads of v and two 4 x 4
-// transposes. A pair then touches about two cache lines of j's instead of
-// four from the columns. v in the record as well would take it past half a
+// transposes. A pair then touches about two cache lines of j's, against
+// five from the columns. v in the record as well would take it past half a
 // cache line, and the run past the memory it is allowed (the speed case's
 // 260 bytes a particle, issue 23).
 #pragma once
@@ -71,6 +71,16 @@ TALUS_PAIR_INLINE void transpose8(__m256 r[8]) {
     r[k] = _mm256_permute2f128_ps(s[k], s[k + 4], 0x20);
     r[k + 4] = _mm256_permute2f128_ps(s[k], s[k + 4], 0x31);
   }
+}
+
+// Rows r[k] (four doubles of lane k) to columns r[f] (field f of the four lanes).
+TALUS_PAIR_INLINE void transpose4(__m256d r[4]) {
+  const __m256d l01 = _mm256_unpacklo_pd(r[0], r[1]), h01 = _mm256_unpackhi_pd(r[0], r[1]);
+  const __m256d l23 = _mm256_unpacklo_pd(r[2], r[3]), h23 = _mm256_unpackhi_pd(r[2], r[3]);
+  r[0] = _mm256_permute2f128_pd(l01, l23, 0x20);
+  r[1] = _mm256_permute2f128_pd(h01, h23, 0x20);
+  r[2] = _mm256_permute2f128_pd(l01, l23, 0x31);
+  r[3] = _mm256_permute2f128_pd(h01, h23, 0x31);
 }
 
 TALUS_PAIR_INLINE void store_as_double(double* to, __m256 v) {
@@ -136,17 +146,15 @@ TALUS_PAIR_INLINE void gather_records(const NeighbourRecordDouble* records, cons
       a[l] = _mm256_load_pd(&records[j[k + l]].rho);
       v[l] = _mm256_maskload_pd(&velocity[j[k + l]].x, xyz);
     }
-    const __m256d a01l = _mm256_unpacklo_pd(a[0], a[1]), a01h = _mm256_unpackhi_pd(a[0], a[1]);
-    const __m256d a23l = _mm256_unpacklo_pd(a[2], a[3]), a23h = _mm256_unpackhi_pd(a[2], a[3]);
-    _mm256_storeu_pd(out.rho + k, _mm256_permute2f128_pd(a01l, a23l, 0x20));
-    _mm256_storeu_pd(out.p + k, _mm256_permute2f128_pd(a01h, a23h, 0x20));
-    _mm256_storeu_pd(out.c + k, _mm256_permute2f128_pd(a01l, a23l, 0x31));
-    _mm256_storeu_pd(out.inv_rho + k, _mm256_permute2f128_pd(a01h, a23h, 0x31));
-    const __m256d v01l = _mm256_unpacklo_pd(v[0], v[1]), v01h = _mm256_unpackhi_pd(v[0], v[1]);
-    const __m256d v23l = _mm256_unpacklo_pd(v[2], v[3]), v23h = _mm256_unpackhi_pd(v[2], v[3]);
-    _mm256_storeu_pd(out.vx + k, _mm256_permute2f128_pd(v01l, v23l, 0x20));
-    _mm256_storeu_pd(out.vy + k, _mm256_permute2f128_pd(v01h, v23h, 0x20));
-    _mm256_storeu_pd(out.vz + k, _mm256_permute2f128_pd(v01l, v23l, 0x31));
+    detail::transpose4(a);
+    detail::transpose4(v);
+    _mm256_storeu_pd(out.rho + k, a[0]);
+    _mm256_storeu_pd(out.p + k, a[1]);
+    _mm256_storeu_pd(out.c + k, a[2]);
+    _mm256_storeu_pd(out.inv_rho + k, a[3]);
+    _mm256_storeu_pd(out.vx + k, v[0]);
+    _mm256_storeu_pd(out.vy + k, v[1]);
+    _mm256_storeu_pd(out.vz + k, v[2]);
   }
 #else
   for (int k = 0; k < n; ++k) {
